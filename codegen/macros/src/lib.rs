@@ -1,0 +1,1 @@
+//! The `energy!` proc macro (under construction).
