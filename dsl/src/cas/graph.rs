@@ -1,0 +1,162 @@
+//! The hash-consed expression DAG.
+
+use std::collections::HashMap;
+
+use num_rational::BigRational;
+
+use super::node::{Id, Node, Sym};
+
+/// A hash-consed expression DAG (egg/naga style arena).
+///
+/// Nodes are stored children-before-parents: every child id is smaller than
+/// its parent's id, so a single forward sweep over `nodes()` evaluates any
+/// expression. [`Graph::add`] is the only way a node enters the graph, and it
+/// returns the existing id for a structurally equal node (hash-consing), so
+/// equal canonical expressions share one id.
+///
+/// Use the smart constructors (`add_terms`, `mul`, `pow`, …, see `cas::build`)
+/// rather than `add` directly: they put nodes in canonical form first.
+#[derive(Clone, Debug, Default)]
+pub struct Graph {
+    nodes: Vec<Node>,
+    index: HashMap<Node, Id>,
+    /// Per node: a conservative bitmask of the symbols it depends on
+    /// (bits 0..3: I1..I3, 3..6: σ0..σ2, 6..64: parameters, folded modulo 58).
+    masks: Vec<u64>,
+    /// Parameter names, by parameter index (for printing).
+    params: Vec<String>,
+}
+
+impl Graph {
+    /// An empty graph whose parameters are named `params` (index = position).
+    pub fn new(params: Vec<String>) -> Self {
+        Graph {
+            params,
+            ..Default::default()
+        }
+    }
+
+    /// Insert `node` (whose children must already be in the graph) or return
+    /// the id of the equal node already present.
+    ///
+    /// This does not canonicalise: callers use the smart constructors.
+    pub fn add(&mut self, node: Node) -> Id {
+        if let Some(&id) = self.index.get(&node) {
+            return id;
+        }
+        let id = Id(u32::try_from(self.nodes.len()).expect("expression graph exceeds 2^32 nodes"));
+        debug_assert!(
+            node.children().iter().all(|c| *c < id),
+            "children before parents"
+        );
+        let mask = match &node {
+            Node::Num(_) => 0,
+            Node::Sym(s) => sym_mask(*s),
+            n => n
+                .children()
+                .iter()
+                .fold(0, |m, c| m | self.masks[c.index()]),
+        };
+        self.nodes.push(node.clone());
+        self.masks.push(mask);
+        self.index.insert(node, id);
+        id
+    }
+
+    /// The node behind `id`.
+    #[inline]
+    pub fn get(&self, id: Id) -> &Node {
+        &self.nodes[id.index()]
+    }
+
+    /// All nodes, children before parents.
+    pub fn nodes(&self) -> &[Node] {
+        &self.nodes
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// True when the graph holds no node.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// Parameter names by index.
+    pub fn param_names(&self) -> &[String] {
+        &self.params
+    }
+
+    /// The node id of `sym`.
+    pub fn sym(&mut self, sym: Sym) -> Id {
+        self.add(Node::Sym(sym))
+    }
+
+    /// The node id of an exact rational constant.
+    pub fn num(&mut self, value: BigRational) -> Id {
+        self.add(Node::Num(value))
+    }
+
+    /// The node id of an integer constant.
+    pub fn int(&mut self, value: i64) -> Id {
+        self.num(BigRational::from_integer(value.into()))
+    }
+
+    /// The constant behind `id`, if it is one.
+    pub fn as_num(&self, id: Id) -> Option<&BigRational> {
+        match self.get(id) {
+            Node::Num(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// Whether `id` may depend on `sym` (conservative: `false` is exact,
+    /// `true` may be a false positive only for parameters beyond index 57).
+    pub fn may_depend(&self, id: Id, sym: Sym) -> bool {
+        self.masks[id.index()] & sym_mask(sym) != 0
+    }
+
+    /// Whether `id` may depend on any singular value σk.
+    pub fn uses_sigma(&self, id: Id) -> bool {
+        self.masks[id.index()] & 0b111_000 != 0
+    }
+
+    /// Whether `id` may depend on any of I1, I2, I3.
+    pub fn uses_invariants(&self, id: Id) -> bool {
+        self.masks[id.index()] & 0b111 != 0
+    }
+
+    /// Whether `id` is a constant expression (no symbol at all).
+    pub fn is_constant(&self, id: Id) -> bool {
+        self.masks[id.index()] == 0
+    }
+
+    /// The ids reachable from `roots`, in increasing (topological) order.
+    pub fn reachable(&self, roots: &[Id]) -> Vec<Id> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack: Vec<Id> = roots.to_vec();
+        while let Some(id) = stack.pop() {
+            if std::mem::replace(&mut seen[id.index()], true) {
+                continue;
+            }
+            stack.extend_from_slice(self.get(id).children());
+        }
+        seen.iter()
+            .enumerate()
+            .filter(|(_, s)| **s)
+            .map(|(i, _)| Id(i as u32))
+            .collect()
+    }
+}
+
+fn sym_mask(sym: Sym) -> u64 {
+    match sym {
+        Sym::I1 => 1,
+        Sym::I2 => 2,
+        Sym::I3 => 4,
+        Sym::Sigma(k) => 8 << (k % 3),
+        Sym::Param(k) => 64 << (k % 58),
+    }
+}

@@ -1,0 +1,147 @@
+//! The IR contract: what compiling an energy produces (`ecc_dsl::compile(source, name)
+//! -> Result<Module, Diagnostics>` for every dimension that applies,
+//! `ecc_dsl::compile_dim(source, name, dim) -> Result<DimIr, Diagnostics>` for one), for code generation,
+//! the run-time interpreter and reports.
+//!
+//! All [`Id`]s in a [`DimIr`] index into that `DimIr`'s own [`Graph`]. Leaves
+//! are `Num` (exact rationals) and `Sym` (`Sigma(k)`, `I1`, `I2`, `I3`,
+//! `Param(k)`); a consumer computes I1 = Σσ, I2 = Σσ², I3 = Πσ from the signed
+//! singular values σ first, then evaluates the graph.
+//!
+//! Pair slots follow `ecc_runtime::spectral`: 2D slot 0 = (0, 1); 3D slot k is
+//! the twist/flip about axis k, i.e. pair (1, 2), (2, 0), (0, 1).
+
+use crate::cas::{Graph, Id};
+use crate::span::Span;
+
+/// The result of compiling one source text.
+#[derive(Clone, Debug)]
+pub struct Module {
+    /// The formula text as given.
+    pub source: String,
+    /// The name given to `compile` (used in reports).
+    pub name: String,
+    /// Declared parameters in declaration order; `Sym::Param(k)` is `params[k]`.
+    pub params: Vec<ParamDecl>,
+    /// One entry per dimension the energy compiles for (2 and/or 3), ascending.
+    pub dims: Vec<DimIr>,
+    /// Dimensions not compiled and why (e.g. "uses s3", "declared dim 3").
+    pub skipped: Vec<(u8, String)>,
+}
+
+impl Module {
+    /// The IR for dimension `dim`, if the energy was compiled for it.
+    pub fn dim(&self, dim: u8) -> Option<&DimIr> {
+        self.dims.iter().find(|d| d.dim == dim)
+    }
+
+    /// Parameter defaults in index order.
+    pub fn param_defaults(&self) -> Vec<f64> {
+        self.params.iter().map(|p| p.default).collect()
+    }
+}
+
+/// A `param name = default` declaration.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamDecl {
+    /// The parameter name.
+    pub name: String,
+    /// Its default value (the constant expression evaluated in f64).
+    pub default: f64,
+    /// The declaration's span.
+    pub span: Span,
+}
+
+/// How the energy is differentiated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Path {
+    /// Ψ is a function of I1, I2, I3 only: Smith et al. 2019 (eqs. 22–27, App. D).
+    Invariant,
+    /// Ψ uses a stretch s1..s3 somewhere: Zhu 2020 (divided differences).
+    Stretch,
+}
+
+/// Derivatives of Ψ with respect to the invariants (invariant path only).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct InvariantDerivs {
+    /// [Ψ1, Ψ2, Ψ3] = [∂Ψ/∂I1, ∂Ψ/∂I2, ∂Ψ/∂I3].
+    pub d1: [Id; 3],
+    /// [Ψ11, Ψ22, Ψ33, Ψ12, Ψ13, Ψ23].
+    pub d2: [Id; 6],
+}
+
+/// The compiled energy for one dimension.
+#[derive(Clone, Debug)]
+pub struct DimIr {
+    /// 2 or 3.
+    pub dim: u8,
+    /// The expression DAG all ids below index into.
+    pub graph: Graph,
+    /// Invariant or stretch path.
+    pub path: Path,
+    /// Ψ.
+    pub psi: Id,
+    /// Invariant path: Ψ's derivatives in I1, I2, I3 (expressions in I's, σ's, params).
+    pub d_inv: Option<InvariantDerivs>,
+    /// ∂Ψ/∂σ_i (`dim` entries), both paths.
+    pub d_sigma: Vec<Id>,
+    /// ∂²Ψ/∂σ_i∂σ_j (`dim × dim`, symmetric; Appendix D's A on the invariant path).
+    pub h_sigma: Vec<Vec<Id>>,
+    /// What generated code computes, specialised from what the CAS proved.
+    pub spectral: SpectralIr,
+    /// Ψ is singular on det F = 0 or only defined for det F > 0 (a log, a
+    /// negative power or a fractional power of something vanishing there);
+    /// the solver must keep det F > 0.
+    pub barrier: bool,
+    /// Ψ depends only on I2 and I3 (no I1, no stretch): computable without an SVD.
+    pub svd_free: bool,
+    /// Ψ is unchanged by (σi, σj) → (−σj, −σi) for every pair (proved; false if unknown).
+    pub sign_symmetric: bool,
+    /// Every off-diagonal of A is proved ≡ 0: `spectral.scale` is `Diagonal`.
+    pub decoupled: bool,
+    /// Isotropy of a stretch energy was only checked numerically (not proved).
+    pub isotropy_numeric_only: bool,
+    /// Distinct denominators and log arguments found in the spectral
+    /// expressions (σi+σj, I3, σi, …), for reports.
+    pub singularities: Vec<Id>,
+}
+
+/// The stretch-space eigen data that generated code evaluates.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SpectralIr {
+    /// Ψ_σi.
+    pub grad: Vec<Id>,
+    /// The scaling block A.
+    pub scale: ScaleIr,
+    /// λ_twist = (Ψi + Ψj)/(σi + σj), one per pair slot.
+    pub twist: Vec<PairIr>,
+    /// λ_flip = (Ψi − Ψj)/(σi − σj), one per pair slot.
+    pub flip: Vec<PairIr>,
+}
+
+/// The scaling block A = ∂²Ψ/∂σ².
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ScaleIr {
+    /// Off-diagonals proved ≡ 0: A = diag(a).
+    Diagonal(Vec<Id>),
+    /// A general symmetric A, row-major (`a[i][j] == a[j][i]`).
+    Full(Vec<Vec<Id>>),
+}
+
+/// A twist or flip eigenvalue expression for one pair slot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PairIr {
+    /// Singularity-free after exact division, or a genuine singularity of the
+    /// energy left visible (ARAP's 2Ψ1/(σi+σj)).
+    Exact(Id),
+    /// Use `direct` unless |den| is tiny, then `limit`
+    /// ((A_ii + A_jj)/2 ∓ A_ij); `den` is σi − σj (flip) or σi + σj (twist).
+    Guarded {
+        /// The divided difference as written.
+        direct: Id,
+        /// Its limit on the hyperplane `den = 0`.
+        limit: Id,
+        /// The denominator.
+        den: Id,
+    },
+}
