@@ -1,0 +1,124 @@
+//! The stable mesh types shared by readers, writers, validation, generators
+//! and the FEM solver.
+
+/// A triangle mesh: planar (every `z = 0`) or a surface in 3D.
+///
+/// Triangles index into `positions` (0-based). `uvs`, when present, holds one
+/// texture coordinate per vertex (`uvs.len() == positions.len()`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions; planar meshes have `z = 0`.
+    pub positions: Vec<[f64; 3]>,
+    /// Triangles as vertex index triples, counter-clockwise for positive area
+    /// in the plane.
+    pub triangles: Vec<[usize; 3]>,
+    /// Per-vertex texture coordinates (a parameterisation), if any.
+    pub uvs: Option<Vec<[f64; 2]>>,
+}
+
+/// A tetrahedral mesh.
+///
+/// A tet `[a, b, c, d]` is positively oriented when
+/// `vol = ((b − a) × (c − a)) · (d − a) / 6 > 0`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TetMesh {
+    /// Vertex positions.
+    pub positions: Vec<[f64; 3]>,
+    /// Tetrahedra as vertex index quadruples (0-based).
+    pub tets: Vec<[usize; 4]>,
+}
+
+/// A mesh of either kind, as returned by [`crate::read_mesh`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyMesh {
+    /// A triangle mesh (planar or surface).
+    Tri(TriMesh),
+    /// A tetrahedral mesh.
+    Tet(TetMesh),
+}
+
+impl AnyMesh {
+    /// `"triangle"` or `"tetrahedral"` (for messages).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            AnyMesh::Tri(_) => "triangle",
+            AnyMesh::Tet(_) => "tetrahedral",
+        }
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        match self {
+            AnyMesh::Tri(m) => m.positions.len(),
+            AnyMesh::Tet(m) => m.positions.len(),
+        }
+    }
+
+    /// Number of elements (triangles or tets).
+    pub fn element_count(&self) -> usize {
+        match self {
+            AnyMesh::Tri(m) => m.triangles.len(),
+            AnyMesh::Tet(m) => m.tets.len(),
+        }
+    }
+}
+
+/// What [`crate::validate_tri`] / [`crate::validate_tet`] require beyond the
+/// always-on checks (indices in range, no repeated vertex in an element, no
+/// duplicate element, finite coordinates, no degenerate or inverted element).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValidationOptions {
+    /// Reject non-manifold edges (triangles: an edge with more than two
+    /// faces, a pinched vertex, a boundary vertex with more than two boundary
+    /// edges; tets: a face shared by more than two tets).
+    pub require_manifold: bool,
+    /// Reject inconsistently oriented triangle surfaces (an interior edge
+    /// used twice in the same direction). Planar meshes and tet meshes are
+    /// checked by the sign of their measure instead.
+    pub require_oriented: bool,
+    /// Reject meshes with more than one connected component.
+    pub require_single_component: bool,
+    /// An element whose rest measure `m` satisfies `|m| ≤ tol · L^d` is
+    /// degenerate, where `L` is the bounding-box diagonal of the referenced
+    /// vertices and `d` the element dimension (2 for triangles, 3 for
+    /// tets). The default `1e-12` sits far above round-off (`~1e-16 · L^d`)
+    /// and far below the smallest real elements in the test data
+    /// (camelhead's folded faces have area `~1e-7 · L²`).
+    pub rest_measure_tolerance: f64,
+}
+
+impl Default for ValidationOptions {
+    fn default() -> Self {
+        ValidationOptions {
+            require_manifold: false,
+            require_oriented: false,
+            require_single_component: false,
+            rest_measure_tolerance: 1e-12,
+        }
+    }
+}
+
+/// A mesh that passed validation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Validated<M> {
+    /// The mesh, with unreferenced vertices removed and indices renumbered.
+    pub mesh: M,
+    /// `vertex_map[old] = Some(new)`, or `None` for a dropped
+    /// (unreferenced) vertex. Its length is the input vertex count.
+    pub vertex_map: Vec<Option<usize>>,
+    /// Human-readable notes about what was changed (e.g. dropped vertices).
+    pub warnings: Vec<String>,
+}
+
+/// Edge weights of the Tutte / Floater embedding.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TutteWeights {
+    /// `w_ij = 1` (Tutte's barycentric embedding). Bijective.
+    Uniform,
+    /// Floater's mean-value weights
+    /// `w_ij = (tan(α/2) + tan(β/2)) / |x_i − x_j|`. Positive, so bijective.
+    MeanValue,
+    /// Cotangent weights `w_ij = (cot α_ij + cot β_ij) / 2`. Can be negative
+    /// on obtuse triangles, so the map may fold.
+    Cotangent,
+}
