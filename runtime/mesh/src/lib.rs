@@ -1,10 +1,16 @@
 //! ecc-mesh: triangle and tetrahedral meshes for ecc.
 //!
-//! (Readers, writers, validation, generators and the Tutte embedding are
-//! being added; the types in [`types`] and [`error`] are the stable contract.)
+//! (Validation, generators and the Tutte embedding are being added; the
+//! types in [`types`] and [`error`] are the stable contract.)
 
 pub mod error;
+pub mod geometry;
+pub mod io;
 pub mod types;
 
 pub use error::{MeshError, ParseError, TutteError, ValidationError};
+pub use io::{
+    MeshFormat, PointData, parse_gmsh, parse_medit, parse_mesh_bytes, parse_obj, parse_off,
+    parse_vtk, read_mesh, read_tet_mesh, read_tri_mesh, write_obj, write_vtk_tet, write_vtk_tri,
+};
 pub use types::{AnyMesh, TetMesh, TriMesh, TutteWeights, Validated, ValidationOptions};

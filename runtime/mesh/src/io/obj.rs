@@ -1,0 +1,259 @@
+//! Wavefront OBJ reader.
+//!
+//! Understood statements: `v x y [z …]` (a missing `z` is 0; extra values
+//! such as `w` or vertex colours are ignored), `vt u [v …]`, and
+//! `f a b c` with corners `v`, `v/vt`, `v//vn` or `v/vt/vn`. Indices are
+//! 1-based; negative indices count back from the last vertex defined so far.
+//! Every other statement (`vn`, `o`, `g`, `s`, `usemtl`, `mtllib`, `l`, …)
+//! is ignored. Faces with more than three corners are rejected (triangulate
+//! first): splitting them silently would change the elements.
+//!
+//! Texture coordinates: OBJ attaches them to face corners, [`TriMesh`] to
+//! vertices. `uvs` is filled when every vertex is used with exactly one
+//! `vt` (a seamless parameterisation, as [`crate::write_obj`] writes it);
+//! otherwise (seams, as in `spot.obj`, or no `vt`) `uvs` is `None`.
+
+use super::text::{parse_f64, parse_i64, shorten};
+use crate::error::ParseError;
+use crate::types::TriMesh;
+
+/// Resolve a 1-based or negative OBJ index against `count` items so far.
+fn resolve(tok: &str, count: usize, line: usize, what: &str) -> Result<usize, ParseError> {
+    let k = parse_i64(tok, line, what)?;
+    if k == 0 {
+        return Err(ParseError::line(
+            line,
+            format!("{what} 0 is invalid: OBJ indices are 1-based (or negative, relative)"),
+        ));
+    }
+    if k > 0 {
+        Ok((k - 1) as usize)
+    } else {
+        let back = k.unsigned_abs() as usize;
+        if back > count {
+            Err(ParseError::line(
+                line,
+                format!("relative {what} {k} points before the first one ({count} defined so far)"),
+            ))
+        } else {
+            Ok(count - back)
+        }
+    }
+}
+
+/// Parse OBJ text into a triangle mesh (see the module docs).
+pub fn parse_obj(text: &str) -> Result<TriMesh, ParseError> {
+    let mut positions: Vec<[f64; 3]> = Vec::new();
+    let mut tex: Vec<[f64; 2]> = Vec::new();
+    let mut triangles: Vec<[usize; 3]> = Vec::new();
+    let mut corner_vt: Vec<[Option<usize>; 3]> = Vec::new();
+    let mut face_lines: Vec<usize> = Vec::new();
+    for (i, raw) in text.lines().enumerate() {
+        let line = i + 1;
+        let content = raw.split('#').next().unwrap_or("");
+        let mut toks = content.split_whitespace();
+        let Some(key) = toks.next() else { continue };
+        match key {
+            "v" => {
+                let vals: Vec<&str> = toks.collect();
+                if vals.len() < 2 {
+                    return Err(ParseError::line(
+                        line,
+                        format!("vertex needs at least x and y, found {} values", vals.len()),
+                    ));
+                }
+                let x = parse_f64(vals[0], line, "vertex x")?;
+                let y = parse_f64(vals[1], line, "vertex y")?;
+                let z = match vals.get(2) {
+                    Some(t) => parse_f64(t, line, "vertex z")?,
+                    None => 0.0,
+                };
+                positions.push([x, y, z]);
+            }
+            "vt" => {
+                let vals: Vec<&str> = toks.collect();
+                if vals.is_empty() {
+                    return Err(ParseError::line(
+                        line,
+                        "texture coordinate needs at least u",
+                    ));
+                }
+                let u = parse_f64(vals[0], line, "texture u")?;
+                let v = match vals.get(1) {
+                    Some(t) => parse_f64(t, line, "texture v")?,
+                    None => 0.0,
+                };
+                tex.push([u, v]);
+            }
+            "f" => {
+                let corners: Vec<&str> = toks.collect();
+                if corners.len() != 3 {
+                    return Err(ParseError::line(
+                        line,
+                        format!(
+                            "face has {} corners: only triangles are supported (triangulate the mesh first)",
+                            corners.len()
+                        ),
+                    ));
+                }
+                let mut tri = [0usize; 3];
+                let mut vts = [None; 3];
+                for (k, c) in corners.iter().enumerate() {
+                    let mut parts = c.split('/');
+                    let vtok = parts.next().unwrap_or("");
+                    tri[k] = resolve(vtok, positions.len(), line, "vertex index")?;
+                    if let Some(t) = parts.next().filter(|t| !t.is_empty()) {
+                        vts[k] = Some(resolve(t, tex.len(), line, "texture index")?);
+                    }
+                    if let Some(n) = parts.next().filter(|t| !t.is_empty()) {
+                        parse_i64(n, line, "normal index")?;
+                    }
+                    if parts.next().is_some() {
+                        return Err(ParseError::line(
+                            line,
+                            format!("malformed face corner `{}`", shorten(c)),
+                        ));
+                    }
+                }
+                triangles.push(tri);
+                corner_vt.push(vts);
+                face_lines.push(line);
+            }
+            _ => {}
+        }
+    }
+    if positions.is_empty() && triangles.is_empty() {
+        return Err(ParseError::format("no vertices or faces: empty OBJ file"));
+    }
+    if triangles.is_empty() {
+        return Err(ParseError::format("the OBJ file has vertices but no faces"));
+    }
+    for (f, tri) in triangles.iter().enumerate() {
+        for &v in tri {
+            if v >= positions.len() {
+                return Err(ParseError::line(
+                    face_lines[f],
+                    format!(
+                        "face refers to vertex {} but the file defines only {} vertices",
+                        v + 1,
+                        positions.len()
+                    ),
+                ));
+            }
+        }
+        for t in corner_vt[f].iter().flatten() {
+            if *t >= tex.len() {
+                return Err(ParseError::line(
+                    face_lines[f],
+                    format!(
+                        "face refers to texture coordinate {} but the file defines only {}",
+                        t + 1,
+                        tex.len()
+                    ),
+                ));
+            }
+        }
+    }
+    let uvs = per_vertex_uvs(positions.len(), &triangles, &corner_vt, &tex);
+    Ok(TriMesh {
+        positions,
+        triangles,
+        uvs,
+    })
+}
+
+/// Per-vertex uvs if every vertex has exactly one `vt` over all its corners.
+fn per_vertex_uvs(
+    n: usize,
+    triangles: &[[usize; 3]],
+    corner_vt: &[[Option<usize>; 3]],
+    tex: &[[f64; 2]],
+) -> Option<Vec<[f64; 2]>> {
+    if tex.is_empty() {
+        return None;
+    }
+    let mut vt_of: Vec<Option<usize>> = vec![None; n];
+    for (tri, vts) in triangles.iter().zip(corner_vt) {
+        for k in 0..3 {
+            let t = vts[k]?;
+            match vt_of[tri[k]] {
+                None => vt_of[tri[k]] = Some(t),
+                Some(prev) if prev == t || tex[prev] == tex[t] => {}
+                Some(_) => return None,
+            }
+        }
+    }
+    vt_of.into_iter().map(|t| t.map(|t| tex[t])).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_triangles_uvs_and_negative_indices() {
+        let text = "# square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+                    vn 0 0 1\nf 1/1/1 2/2/1 3/3/1\nf -4/-4 -2/-2 -1/-1\ng x\nusemtl m\n";
+        let m = parse_obj(text).unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(m.uvs.unwrap()[3], [0.0, 1.0]);
+    }
+
+    #[test]
+    fn seams_or_missing_vt_give_no_uvs() {
+        let seam = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 5 5\n\
+                    f 1/1 2/2 3/3\nf 2/4 4/2 3/3\n";
+        assert!(parse_obj(seam).unwrap().uvs.is_none());
+        let partial = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3\n";
+        assert!(parse_obj(partial).unwrap().uvs.is_none());
+    }
+
+    #[test]
+    fn malformed_inputs_are_rejected_with_lines() {
+        let cases: &[(&str, &str)] = &[
+            ("", "empty OBJ"),
+            ("v 0 0 0\n", "no faces"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 1\n",
+                "line 4: face has 4 corners",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n",
+                "line 4: vertex index 0 is invalid: OBJ indices are 1-based",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+                "line 4: face refers to vertex 4 but the file defines only 3",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n",
+                "line 4: relative vertex index -4",
+            ),
+            (
+                "v 0 zero 0\n",
+                "line 1: expected vertex y (a number), found `zero`",
+            ),
+            ("v 0 0 nan\n", "line 1: vertex z is not finite"),
+            ("v 0\n", "line 1: vertex needs at least x and y"),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n",
+                "line 4: expected vertex index (an integer), found `x`",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n",
+                "line 4: face refers to texture coordinate 1 but the file defines only 0",
+            ),
+            (
+                "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3\n",
+                "line 4: malformed face corner",
+            ),
+            ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "face has 2 corners"),
+            ("vt\n", "line 1: texture coordinate needs at least u"),
+        ];
+        for (text, want) in cases {
+            let err = parse_obj(text).unwrap_err().to_string();
+            assert!(err.contains(want), "{text:?}: got {err:?}, want {want:?}");
+        }
+    }
+}
