@@ -80,7 +80,10 @@ pub trait Energy<const D: usize>: Send + Sync {
     /// Override a parameter at run time.
     fn set_param(&mut self, name: &str, value: f64) -> Result<(), ParamError> {
         if !value.is_finite() {
-            return Err(ParamError::NotFinite { name: name.to_string(), value });
+            return Err(ParamError::NotFinite {
+                name: name.to_string(),
+                value,
+            });
         }
         Err(ParamError::Unknown {
             name: name.to_string(),

@@ -21,8 +21,30 @@
 //! Crate-level dependencies are deliberately tiny (nalgebra only): this crate
 //! never depends on the compiler crates (`ecc-dsl`, `ecc-codegen`).
 
-pub mod energy;
-pub mod spectral;
+// Index loops mirror the maths (u_a[r]·w_b[n], pair slots) more clearly than iterators.
+#![allow(clippy::needless_range_loop)]
 
+pub mod divided;
+pub mod element;
+pub mod energies;
+pub mod energy;
+pub mod filter;
+pub mod invariants;
+mod modes;
+pub mod point;
+pub mod reference;
+pub mod spectral;
+pub mod stretch;
+pub mod svd;
+pub mod sym;
+
+pub use element::{
+    ElementEval, RestError, TetRest, TriRest, tet_eval, tet_f, tet_psi, tri_eval, tri_f, tri_psi,
+};
 pub use energy::{Energy, EnergyInfo, ParamError};
-pub use spectral::{pair_indices, ScaleBlock, Spectral, PAIRS_2D, PAIRS_3D};
+pub use filter::Filter;
+pub use invariants::spectral_from_invariants;
+pub use point::{eigen_f2, eigen_f3, gradient_f2, gradient_f3, hessian_f2, hessian_f3};
+pub use spectral::{PAIRS_2D, PAIRS_3D, ScaleBlock, Spectral, pair_indices};
+pub use stretch::spectral_from_stretch;
+pub use svd::{Svd, signed_svd, signed_svd2, signed_svd3};

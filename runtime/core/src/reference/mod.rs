@@ -1,0 +1,69 @@
+//! Numeric baselines: nalgebra projection and central differences.
+//!
+//! Used by tests, benchmarks and the CLI's `ecc check`. They are deliberately
+//! independent of the analytic machinery: [`project_psd_numeric`] uses
+//! nalgebra's `SymmetricEigen`, and the finite differences only ever evaluate
+//! Ψ(F) through [`psi_f`].
+
+mod fd;
+
+pub use fd::{
+    fd_gradient, fd_gradient_f, fd_gradient_f2, fd_gradient_f3, fd_hessian, fd_hessian_f,
+    fd_hessian_f2, fd_hessian_f3,
+};
+
+use crate::energy::Energy;
+use crate::filter::Filter;
+use crate::svd::signed_svd;
+use nalgebra::allocator::Allocator;
+use nalgebra::{
+    ArrayStorage, Const, DefaultAllocator, DimDiff, DimSub, SMatrix, SymmetricEigen, U1,
+};
+
+/// Filter a symmetric matrix numerically: H = Q diag(filter(λ)) Qᵀ with
+/// nalgebra's `SymmetricEigen` (the baseline the analytic path is compared to).
+/// Only the symmetric part of `h` is used.
+pub fn project_psd_numeric<const N: usize>(
+    h: &SMatrix<f64, N, N>,
+    filter: Filter,
+) -> SMatrix<f64, N, N>
+where
+    Const<N>: DimSub<U1>,
+    DefaultAllocator: Allocator<DimDiff<Const<N>, U1>>,
+{
+    let mut sym = [[0.0; N]; N];
+    for (j, col) in sym.iter_mut().enumerate() {
+        for (i, x) in col.iter_mut().enumerate() {
+            *x = 0.5 * (h[(i, j)] + h[(j, i)]);
+        }
+    }
+    if filter.is_raw() {
+        return SMatrix::from_array_storage(ArrayStorage(sym));
+    }
+    if !sym.iter().flatten().all(|x| x.is_finite()) {
+        return SMatrix::from_array_storage(ArrayStorage([[0.0; N]; N]));
+    }
+    let eig = SymmetricEigen::<f64, Const<N>>::new(SMatrix::from_array_storage(ArrayStorage(sym)));
+    let q = &eig.eigenvectors;
+    let lam: [f64; N] = std::array::from_fn(|k| filter.apply(eig.eigenvalues[k]));
+    let mut out = [[0.0; N]; N];
+    for j in 0..N {
+        for i in j..N {
+            let mut acc = 0.0;
+            for (k, l) in lam.iter().enumerate() {
+                acc += q[(i, k)] * l * q[(j, k)];
+            }
+            out[j][i] = acc;
+            out[i][j] = acc;
+        }
+    }
+    SMatrix::from_array_storage(ArrayStorage(out))
+}
+
+/// Ψ(F) through the signed SVD: `e.psi(σ(F))` (NaN for a non-finite F).
+pub fn psi_f<E: Energy<D> + ?Sized, const D: usize>(e: &E, f: &SMatrix<f64, D, D>) -> f64 {
+    if !f.iter().all(|x| x.is_finite()) {
+        return f64::NAN;
+    }
+    e.psi(&signed_svd(f).sigma)
+}
