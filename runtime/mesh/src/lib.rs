@@ -6,11 +6,15 @@
 pub mod error;
 pub mod geometry;
 pub mod io;
+pub mod topology;
 pub mod types;
+pub mod validate;
 
 pub use error::{MeshError, ParseError, TutteError, ValidationError};
 pub use io::{
     MeshFormat, PointData, parse_gmsh, parse_medit, parse_mesh_bytes, parse_obj, parse_off,
     parse_vtk, read_mesh, read_tet_mesh, read_tri_mesh, write_obj, write_vtk_tet, write_vtk_tri,
 };
+pub use topology::{Components, boundary_loops, components, tet_boundary_faces};
 pub use types::{AnyMesh, TetMesh, TriMesh, TutteWeights, Validated, ValidationOptions};
+pub use validate::{validate_tet, validate_tri};

@@ -1,0 +1,267 @@
+//! Topology helpers: edge–face incidence, boundary loops of triangle
+//! meshes, boundary faces of tet meshes, connected components.
+//!
+//! None of these functions index into positions, and none panics on
+//! arbitrary indices.
+
+use std::collections::HashMap;
+
+use crate::error::ValidationError;
+
+/// One triangle side: the undirected edge `[min, max]`, the triangle, and
+/// the side's direction in the triangle (`from → to`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Side {
+    pub key: [usize; 2],
+    pub face: usize,
+    pub from: usize,
+    pub to: usize,
+}
+
+/// All triangle sides, sorted by undirected edge (then by face).
+pub(crate) fn sorted_sides(tris: &[[usize; 3]]) -> Vec<Side> {
+    let mut sides = Vec::with_capacity(tris.len() * 3);
+    for (face, t) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (from, to) = (t[k], t[(k + 1) % 3]);
+            sides.push(Side {
+                key: [from.min(to), from.max(to)],
+                face,
+                from,
+                to,
+            });
+        }
+    }
+    sides.sort_unstable_by_key(|s| (s.key, s.face));
+    sides
+}
+
+/// The boundary loops of a triangle mesh, each as a cycle of vertex ids in
+/// the direction of its triangles' edges (counter-clockwise around a
+/// consistently oriented disk with positive area), starting from the
+/// boundary edge of the lowest-numbered triangle.
+///
+/// A boundary edge is an edge used by exactly one triangle. Errors: an
+/// edge used by more than two triangles ([`ValidationError::NonManifoldEdge`]),
+/// or a vertex where the boundary does not pass through exactly once
+/// ([`ValidationError::NonManifoldVertex`]: pinched boundary, or
+/// inconsistently oriented triangles along the boundary).
+pub fn boundary_loops(tris: &[[usize; 3]]) -> Result<Vec<Vec<usize>>, ValidationError> {
+    let sides = sorted_sides(tris);
+    let mut boundary: Vec<Side> = Vec::new();
+    for group in sides.chunk_by(|a, b| a.key == b.key) {
+        match group.len() {
+            1 => boundary.push(group[0]),
+            2 => {}
+            _ => {
+                return Err(ValidationError::NonManifoldEdge {
+                    edge: group[0].key,
+                    faces: group.iter().map(|s| s.face).collect(),
+                });
+            }
+        }
+    }
+    boundary.sort_unstable_by_key(|s| (s.face, s.from));
+    let mut next: HashMap<usize, usize> = HashMap::with_capacity(boundary.len());
+    let mut incoming: HashMap<usize, usize> = HashMap::with_capacity(boundary.len());
+    for s in &boundary {
+        if next.insert(s.from, s.to).is_some() {
+            return Err(ValidationError::NonManifoldVertex {
+                vertex: s.from,
+                reason:
+                    "two boundary edges leave it (pinched boundary or inconsistent orientation)"
+                        .into(),
+            });
+        }
+        *incoming.entry(s.to).or_default() += 1;
+    }
+    for s in &boundary {
+        if incoming.get(&s.from).copied().unwrap_or(0) != 1 {
+            return Err(ValidationError::NonManifoldVertex {
+                vertex: s.from,
+                reason: "the boundary does not pass through it exactly once (pinched boundary or inconsistent orientation)".into(),
+            });
+        }
+    }
+    let mut visited: HashMap<usize, bool> = HashMap::with_capacity(boundary.len());
+    let mut loops = Vec::new();
+    for s in &boundary {
+        if visited.contains_key(&s.from) {
+            continue;
+        }
+        let mut cycle = vec![s.from];
+        visited.insert(s.from, true);
+        let mut v = s.to;
+        // Every boundary vertex has exactly one successor and one
+        // predecessor, so following successors returns to the start.
+        while v != s.from {
+            visited.insert(v, true);
+            cycle.push(v);
+            v = next[&v];
+        }
+        loops.push(cycle);
+    }
+    Ok(loops)
+}
+
+/// Outward faces of a positively oriented tet `[0, 1, 2, 3]`, one per
+/// opposite vertex: for `vol > 0` the normal `(b − a) × (c − a)` of each
+/// face `(a, b, c)` points away from the fourth vertex.
+pub const TET_FACES: [[usize; 3]; 4] = [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]];
+
+/// Faces used by exactly one tet, oriented outward for positively oriented
+/// tets, in order of (tet, local face). Faces shared by more than two tets
+/// are not boundary faces (validation reports them).
+pub fn tet_boundary_faces(tets: &[[usize; 4]]) -> Vec<[usize; 3]> {
+    let mut faces: Vec<([usize; 3], usize, usize)> = Vec::with_capacity(tets.len() * 4);
+    for (t, tet) in tets.iter().enumerate() {
+        for (l, f) in TET_FACES.iter().enumerate() {
+            let mut key = [tet[f[0]], tet[f[1]], tet[f[2]]];
+            key.sort_unstable();
+            faces.push((key, t, l));
+        }
+    }
+    faces.sort_unstable();
+    let mut out: Vec<(usize, usize)> = faces
+        .chunk_by(|a, b| a.0 == b.0)
+        .filter(|g| g.len() == 1)
+        .map(|g| (g[0].1, g[0].2))
+        .collect();
+    out.sort_unstable();
+    out.into_iter()
+        .map(|(t, l)| TET_FACES[l].map(|k| tets[t][k]))
+        .collect()
+}
+
+/// Connected components of a mesh (elements sharing a vertex are
+/// connected).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Components {
+    /// Number of components.
+    pub count: usize,
+    /// Component id of each element, numbered in order of first element.
+    pub element_component: Vec<usize>,
+}
+
+fn find(parent: &mut [usize], mut x: usize) -> usize {
+    while parent[x] != x {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    x
+}
+
+/// Connected components of elements with `K` vertices each (triangles,
+/// tets, edges…).
+pub fn components<const K: usize>(elements: &[[usize; K]]) -> Components {
+    let mut parent: Vec<usize> = (0..elements.len()).collect();
+    let mut owner: HashMap<usize, usize> = HashMap::with_capacity(elements.len());
+    for (e, el) in elements.iter().enumerate() {
+        for &v in el {
+            match owner.get(&v) {
+                Some(&o) => {
+                    let (a, b) = (find(&mut parent, o), find(&mut parent, e));
+                    if a != b {
+                        parent[a.max(b)] = a.min(b);
+                    }
+                }
+                None => {
+                    owner.insert(v, e);
+                }
+            }
+        }
+    }
+    let mut label = vec![usize::MAX; elements.len()];
+    let mut element_component = Vec::with_capacity(elements.len());
+    let mut count = 0;
+    for e in 0..elements.len() {
+        let r = find(&mut parent, e);
+        if label[r] == usize::MAX {
+            label[r] = count;
+            count += 1;
+        }
+        element_component.push(label[r]);
+    }
+    Components {
+        count,
+        element_component,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::tet_signed_volume;
+
+    #[test]
+    fn square_has_one_ccw_loop() {
+        let tris = [[0, 1, 2], [0, 2, 3]];
+        assert_eq!(boundary_loops(&tris).unwrap(), vec![vec![0, 1, 2, 3]]);
+        assert!(boundary_loops(&[[0, 1, 2], [0, 2, 1]]).unwrap().is_empty());
+    }
+
+    #[test]
+    fn annulus_has_two_loops() {
+        // Outer square 0..4, inner square 4..8, 8 triangles.
+        let tris = [
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+            [3, 0, 4],
+            [3, 4, 7],
+        ];
+        let loops = boundary_loops(&tris).unwrap();
+        assert_eq!(loops, vec![vec![0, 1, 2, 3], vec![5, 4, 7, 6]]);
+    }
+
+    #[test]
+    fn non_manifold_edges_and_pinched_boundaries_are_reported() {
+        let fin = [[0, 1, 2], [1, 0, 3], [0, 1, 4]];
+        let err = boundary_loops(&fin).unwrap_err();
+        assert_eq!(
+            err,
+            ValidationError::NonManifoldEdge {
+                edge: [0, 1],
+                faces: vec![0, 1, 2]
+            }
+        );
+        let bowtie = [[0, 1, 2], [0, 3, 4]];
+        let err = boundary_loops(&bowtie).unwrap_err();
+        assert!(
+            matches!(err, ValidationError::NonManifoldVertex { vertex: 0, .. }),
+            "{err}"
+        );
+        let flipped = [[0, 1, 2], [0, 3, 2]];
+        assert!(boundary_loops(&flipped).is_err());
+    }
+
+    #[test]
+    fn tet_faces_point_outward() {
+        let p = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        assert!(tet_signed_volume(p[0], p[1], p[2], p[3]) > 0.0);
+        let centroid = [0.25, 0.25, 0.25];
+        for f in tet_boundary_faces(&[[0, 1, 2, 3]]) {
+            // The tet (face, centroid) is negative iff the face points away.
+            assert!(tet_signed_volume(p[f[0]], p[f[1]], p[f[2]], centroid) < 0.0);
+        }
+        // Two tets sharing face {1,2,3}: 6 boundary faces.
+        assert_eq!(tet_boundary_faces(&[[0, 1, 2, 3], [4, 1, 3, 2]]).len(), 6);
+    }
+
+    #[test]
+    fn components_are_labelled_in_order() {
+        let c = components(&[[0, 1, 2], [5, 6, 7], [2, 3, 4], [7, 8, 9]]);
+        assert_eq!(c.count, 2);
+        assert_eq!(c.element_component, vec![0, 1, 0, 1]);
+        assert_eq!(components::<3>(&[]).count, 0);
+        assert_eq!(components(&[[usize::MAX, 0, 1]]).count, 1);
+    }
+}
