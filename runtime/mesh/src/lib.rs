@@ -4,6 +4,7 @@
 //! types in [`types`] and [`error`] are the stable contract.)
 
 pub mod error;
+pub mod generate;
 pub mod geometry;
 pub mod io;
 pub mod topology;
@@ -11,6 +12,9 @@ pub mod types;
 pub mod validate;
 
 pub use error::{MeshError, ParseError, TutteError, ValidationError};
+pub use generate::{
+    bar_tet, box_tet, box_tet_with_at_least, disk_tri, grid_tri, grid_tri_with_at_least,
+};
 pub use io::{
     MeshFormat, PointData, parse_gmsh, parse_medit, parse_mesh_bytes, parse_obj, parse_off,
     parse_vtk, read_mesh, read_tet_mesh, read_tri_mesh, write_obj, write_vtk_tet, write_vtk_tri,
