@@ -1,0 +1,274 @@
+//! The deterministic canonical printer.
+//!
+//! The text depends only on the expression's structure, never on node ids or
+//! insertion order: sum terms are ordered by (total degree descending, text),
+//! product factors by (symbols and their powers first, text). Coefficients
+//! are exact (`I2/2`, `-3*I1/(2*I3)`), negative powers print as divisions,
+//! `x^(1/2)` prints as `sqrt(x)`. Parameters print by name, σk as `s{k+1}`.
+
+use std::collections::HashMap;
+
+use num_rational::BigRational;
+use num_traits::{One, Signed};
+
+use super::graph::Graph;
+use super::node::{Id, Node, Sym};
+use super::rat;
+
+/// Binding strength of a printed fragment.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Prec {
+    Sum = 1,
+    Product = 2,
+    Power = 3,
+    Atom = 4,
+}
+
+#[derive(Clone)]
+struct Printed {
+    text: String,
+    prec: Prec,
+    degree: i64,
+}
+
+impl Graph {
+    /// The canonical text of `id`.
+    pub fn to_text(&self, id: Id) -> String {
+        let mut memo: HashMap<Id, Printed> = HashMap::new();
+        for n in self.reachable(&[id]) {
+            let p = self.print_node(n, &memo);
+            memo.insert(n, p);
+        }
+        memo.remove(&id).map(|p| p.text).unwrap_or_default()
+    }
+
+    /// The printed name of a symbol.
+    pub fn sym_name(&self, s: Sym) -> String {
+        match s {
+            Sym::I1 => "I1".into(),
+            Sym::I2 => "I2".into(),
+            Sym::I3 => "I3".into(),
+            Sym::Sigma(k) => format!("s{}", k + 1),
+            Sym::Param(k) => self
+                .param_names()
+                .get(k as usize)
+                .cloned()
+                .unwrap_or_else(|| format!("p{k}")),
+        }
+    }
+
+    fn print_node(&self, id: Id, memo: &HashMap<Id, Printed>) -> Printed {
+        let get = |c: &Id| memo[c].clone();
+        match self.get(id) {
+            Node::Num(r) => print_num(r),
+            Node::Sym(s) => Printed {
+                text: self.sym_name(*s),
+                prec: Prec::Atom,
+                degree: 1,
+            },
+            Node::Log(x) => Printed {
+                text: format!("log({})", get(x).text),
+                prec: Prec::Atom,
+                degree: 1,
+            },
+            Node::Exp(x) => Printed {
+                text: format!("exp({})", get(x).text),
+                prec: Prec::Atom,
+                degree: 1,
+            },
+            Node::Pow([b, e]) => {
+                let ne = self.as_num(*e).filter(|r| r.is_negative()).cloned();
+                match ne {
+                    Some(neg) => {
+                        let den = self.print_pow(&get(b), &(-neg), None);
+                        Printed {
+                            text: format!("1/{}", wrap(&den, Prec::Power)),
+                            prec: Prec::Product,
+                            degree: -den.degree,
+                        }
+                    }
+                    None => {
+                        let en = self.as_num(*e).cloned();
+                        self.print_pow(
+                            &get(b),
+                            en.as_ref().unwrap_or(&BigRational::one()),
+                            en.is_none().then(|| get(e)),
+                        )
+                    }
+                }
+            }
+            Node::Add(children) => {
+                let mut terms: Vec<(i64, String, String)> = Vec::new();
+                let mut constant: Option<String> = None;
+                for c in children {
+                    if let Node::Num(r) = self.get(*c) {
+                        constant = Some(print_num(r).text);
+                        continue;
+                    }
+                    let p = get(c);
+                    let key = self.term_key(*c, memo);
+                    terms.push((-p.degree, key, p.text));
+                }
+                terms.sort();
+                let mut text = String::new();
+                let mut degree = 0;
+                let all = terms
+                    .into_iter()
+                    .map(|(d, _, t)| (d, t))
+                    .chain(constant.map(|t| (0, t)));
+                for (i, (d, t)) in all.enumerate() {
+                    degree = degree.max(-d);
+                    if i == 0 {
+                        text.push_str(&t);
+                    } else if let Some(rest) = t.strip_prefix('-') {
+                        text.push_str(" - ");
+                        text.push_str(rest);
+                    } else {
+                        text.push_str(" + ");
+                        text.push_str(&t);
+                    }
+                }
+                Printed {
+                    text,
+                    prec: Prec::Sum,
+                    degree,
+                }
+            }
+            Node::Mul(children) => {
+                let mut coef = BigRational::one();
+                let mut num: Vec<(u8, String)> = Vec::new();
+                let mut den: Vec<(u8, String)> = Vec::new();
+                let mut degree = 0;
+                for c in children {
+                    match self.get(*c) {
+                        Node::Num(r) => coef = r.clone(),
+                        Node::Pow([b, e]) if self.as_num(*e).is_some_and(|r| r.is_negative()) => {
+                            let neg = -self.as_num(*e).cloned().unwrap_or_else(BigRational::one);
+                            let p = self.print_pow(&get(b), &neg, None);
+                            degree -= p.degree;
+                            den.push((self.rank(*b), wrap(&p, Prec::Power)));
+                        }
+                        _ => {
+                            let p = get(c);
+                            degree += p.degree;
+                            let base = match self.get(*c) {
+                                Node::Pow([b, _]) => *b,
+                                _ => *c,
+                            };
+                            num.push((self.rank(base), wrap(&p, Prec::Power)));
+                        }
+                    }
+                }
+                num.sort();
+                den.sort();
+                let mut num: Vec<String> = num.into_iter().map(|(_, t)| t).collect();
+                let mut den: Vec<String> = den.into_iter().map(|(_, t)| t).collect();
+                let sign = if coef.is_negative() { "-" } else { "" };
+                let (p, q) = (coef.numer().abs(), coef.denom().clone());
+                if !p.is_one() {
+                    num.insert(0, p.to_string());
+                }
+                if !q.is_one() {
+                    den.insert(0, q.to_string());
+                }
+                let num_text = if num.is_empty() {
+                    "1".to_string()
+                } else {
+                    num.join("*")
+                };
+                let text = match den.len() {
+                    0 => format!("{sign}{num_text}"),
+                    1 => format!("{sign}{num_text}/{}", den[0]),
+                    _ => format!("{sign}{num_text}/({})", den.join("*")),
+                };
+                let prec = if sign.is_empty() && den.is_empty() && num.len() == 1 {
+                    Prec::Power
+                } else {
+                    Prec::Product
+                };
+                Printed { text, prec, degree }
+            }
+        }
+    }
+
+    /// `base^e` for a non-negative exponent `e` (or the symbolic `sym_exp`).
+    fn print_pow(&self, base: &Printed, e: &BigRational, sym_exp: Option<Printed>) -> Printed {
+        if let Some(se) = sym_exp {
+            return Printed {
+                text: format!("{}^{}", wrap(base, Prec::Atom), wrap(&se, Prec::Atom)),
+                prec: Prec::Power,
+                degree: 1,
+            };
+        }
+        if e.is_one() {
+            return base.clone();
+        }
+        let half = BigRational::new(1.into(), 2.into());
+        if *e == half {
+            return Printed {
+                text: format!("sqrt({})", base.text),
+                prec: Prec::Atom,
+                degree: 1,
+            };
+        }
+        let degree = rat::as_i64(e).map_or(1, |n| n * base.degree);
+        let et = if e.is_integer() {
+            e.to_string()
+        } else {
+            format!("({e})")
+        };
+        Printed {
+            text: format!("{}^{et}", wrap(base, Prec::Atom)),
+            prec: Prec::Power,
+            degree,
+        }
+    }
+
+    /// Ordering rank of a product factor's base: symbols first, in symbol order.
+    fn rank(&self, base: Id) -> u8 {
+        match self.get(base) {
+            Node::Sym(Sym::I1) => 0,
+            Node::Sym(Sym::I2) => 1,
+            Node::Sym(Sym::I3) => 2,
+            Node::Sym(Sym::Sigma(k)) => 3 + k.min(&2),
+            Node::Sym(Sym::Param(_)) => 6,
+            _ => 7,
+        }
+    }
+
+    /// Sort key of a sum term: its text without the rational coefficient.
+    fn term_key(&self, t: Id, memo: &HashMap<Id, Printed>) -> String {
+        if let Node::Mul(children) = self.get(t) {
+            let parts: Vec<&str> = children
+                .iter()
+                .filter(|c| !matches!(self.get(**c), Node::Num(_)))
+                .map(|c| memo[c].text.as_str())
+                .collect();
+            let mut parts = parts;
+            parts.sort();
+            return parts.join("*");
+        }
+        memo[&t].text.clone()
+    }
+}
+
+fn print_num(r: &BigRational) -> Printed {
+    let prec = if r.is_integer() && !r.is_negative() {
+        Prec::Atom
+    } else {
+        Prec::Product
+    };
+    Printed {
+        text: r.to_string(),
+        prec,
+        degree: 0,
+    }
+}
+
+fn wrap(p: &Printed, min: Prec) -> String {
+    if p.prec < min {
+        format!("({})", p.text)
+    } else {
+        p.text.clone()
+    }
+}
