@@ -1,0 +1,11 @@
+//! Exact polynomial machinery over ℚ: sparse multivariate polynomials,
+//! rational functions with factored denominators, conversion from and to
+//! expressions, exact identity tests and exact division.
+
+mod convert;
+mod polynomial;
+mod ratfun;
+
+pub use convert::{Converter, Proof, is_zero};
+pub use polynomial::{MAX_TERMS, Mono, Poly, TooBig, div_linear};
+pub use ratfun::RatFun;

@@ -1,0 +1,397 @@
+//! Sparse multivariate polynomials over ℚ.
+//!
+//! A monomial is its exponent vector with trailing zeros trimmed, so the
+//! derived `Vec` ordering is the lexicographic monomial order (variable 0 most
+//! significant). The leading term is the largest key.
+
+use std::collections::BTreeMap;
+
+use num_bigint::BigInt;
+use num_integer::Integer;
+use num_rational::BigRational;
+use num_traits::{One, Signed, Zero};
+
+/// Exponent vector (trailing zeros trimmed).
+pub type Mono = Vec<u32>;
+
+/// Largest number of terms any intermediate polynomial may have; beyond it
+/// the polynomial machinery gives up (answers "unknown"), which keeps every
+/// compile bounded in time.
+pub const MAX_TERMS: usize = 6000;
+
+/// The polynomial exceeded [`MAX_TERMS`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TooBig;
+
+/// A polynomial Σ c_m x^m with exact rational coefficients (never storing 0).
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Poly {
+    terms: BTreeMap<Mono, BigRational>,
+}
+
+fn trim(mut m: Mono) -> Mono {
+    while m.last() == Some(&0) {
+        m.pop();
+    }
+    m
+}
+
+fn mono_mul(a: &[u32], b: &[u32]) -> Mono {
+    let n = a.len().max(b.len());
+    let v = (0..n)
+        .map(|i| a.get(i).copied().unwrap_or(0) + b.get(i).copied().unwrap_or(0))
+        .collect();
+    trim(v)
+}
+
+/// `a / b` if `b` divides `a`.
+fn mono_div(a: &[u32], b: &[u32]) -> Option<Mono> {
+    if b.len() > a.len() {
+        return None;
+    }
+    let mut v = a.to_vec();
+    for (i, e) in b.iter().enumerate() {
+        v[i] = v[i].checked_sub(*e)?;
+    }
+    Some(trim(v))
+}
+
+impl Poly {
+    /// 0.
+    pub fn zero() -> Self {
+        Poly::default()
+    }
+
+    /// A constant.
+    pub fn constant(c: BigRational) -> Self {
+        let mut p = Poly::zero();
+        if !c.is_zero() {
+            p.terms.insert(Vec::new(), c);
+        }
+        p
+    }
+
+    /// 1.
+    pub fn one() -> Self {
+        Poly::constant(BigRational::one())
+    }
+
+    /// The variable x_i.
+    pub fn var(i: usize) -> Self {
+        Poly::monomial(BigRational::one(), &Poly::unit_mono(i, 1))
+    }
+
+    /// c · x^m.
+    pub fn monomial(c: BigRational, m: &[u32]) -> Self {
+        let mut p = Poly::zero();
+        if !c.is_zero() {
+            p.terms.insert(trim(m.to_vec()), c);
+        }
+        p
+    }
+
+    /// The exponent vector x_i^e.
+    pub fn unit_mono(i: usize, e: u32) -> Mono {
+        let mut m = vec![0; i + 1];
+        m[i] = e;
+        trim(m)
+    }
+
+    /// Whether this is the zero polynomial.
+    pub fn is_zero(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The value if the polynomial is constant.
+    pub fn as_constant(&self) -> Option<BigRational> {
+        match self.terms.len() {
+            0 => Some(BigRational::zero()),
+            1 => self.terms.get(&Vec::new()).cloned(),
+            _ => None,
+        }
+    }
+
+    /// Number of terms.
+    pub fn len(&self) -> usize {
+        self.terms.len()
+    }
+
+    /// Whether there is no term (the zero polynomial).
+    pub fn is_empty(&self) -> bool {
+        self.terms.is_empty()
+    }
+
+    /// The terms, in increasing lexicographic order.
+    pub fn terms(&self) -> impl Iterator<Item = (&Mono, &BigRational)> {
+        self.terms.iter()
+    }
+
+    /// The leading (lexicographically largest) term.
+    pub fn leading(&self) -> Option<(&Mono, &BigRational)> {
+        self.terms.iter().next_back()
+    }
+
+    /// Bitmask of the variables that occur (variables ≥ 64 share bit 63).
+    pub fn var_mask(&self) -> u64 {
+        let mut mask = 0;
+        for m in self.terms.keys() {
+            for (i, e) in m.iter().enumerate() {
+                if *e > 0 {
+                    mask |= 1u64 << i.min(63);
+                }
+            }
+        }
+        mask
+    }
+
+    fn add_term(&mut self, m: Mono, c: BigRational) {
+        if c.is_zero() {
+            return;
+        }
+        match self.terms.entry(m) {
+            std::collections::btree_map::Entry::Vacant(v) => {
+                v.insert(c);
+            }
+            std::collections::btree_map::Entry::Occupied(mut o) => {
+                *o.get_mut() += c;
+                if o.get().is_zero() {
+                    o.remove();
+                }
+            }
+        }
+    }
+
+    /// `self + other`.
+    pub fn add(&self, other: &Poly) -> Result<Poly, TooBig> {
+        let mut r = self.clone();
+        for (m, c) in &other.terms {
+            r.add_term(m.clone(), c.clone());
+        }
+        r.check()
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &Poly) -> Result<Poly, TooBig> {
+        self.add(&other.neg())
+    }
+
+    /// `-self`.
+    pub fn neg(&self) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(m, c)| (m.clone(), -c.clone()))
+                .collect(),
+        }
+    }
+
+    /// `c · self`.
+    pub fn scale(&self, c: &BigRational) -> Poly {
+        if c.is_zero() {
+            return Poly::zero();
+        }
+        Poly {
+            terms: self.terms.iter().map(|(m, x)| (m.clone(), x * c)).collect(),
+        }
+    }
+
+    /// `self · x^m`.
+    pub fn mul_mono(&self, m: &[u32]) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .map(|(k, c)| (mono_mul(k, m), c.clone()))
+                .collect(),
+        }
+    }
+
+    /// `self · other`.
+    pub fn mul(&self, other: &Poly) -> Result<Poly, TooBig> {
+        if self.terms.len().saturating_mul(other.terms.len()) > MAX_TERMS * 64 {
+            return Err(TooBig);
+        }
+        let mut r = Poly::zero();
+        for (ma, ca) in &self.terms {
+            for (mb, cb) in &other.terms {
+                r.add_term(mono_mul(ma, mb), ca * cb);
+            }
+        }
+        r.check()
+    }
+
+    /// `self^n`.
+    pub fn pow(&self, n: u32) -> Result<Poly, TooBig> {
+        let mut result = Poly::one();
+        let mut base = self.clone();
+        let mut n = n;
+        while n > 0 {
+            if n & 1 == 1 {
+                result = result.mul(&base)?;
+            }
+            n >>= 1;
+            if n > 0 {
+                base = base.mul(&base)?;
+            }
+        }
+        Ok(result)
+    }
+
+    fn check(self) -> Result<Poly, TooBig> {
+        if self.terms.len() > MAX_TERMS {
+            Err(TooBig)
+        } else {
+            Ok(self)
+        }
+    }
+
+    /// The largest monomial dividing every term (componentwise minimum).
+    pub fn monomial_content(&self) -> Mono {
+        let mut it = self.terms.keys();
+        let Some(first) = it.next() else {
+            return Vec::new();
+        };
+        let mut m = first.clone();
+        for k in it {
+            m.truncate(k.len());
+            for (i, e) in m.iter_mut().enumerate() {
+                *e = (*e).min(k[i]);
+            }
+        }
+        trim(m)
+    }
+
+    /// `self / x^m`, assuming `x^m` divides every term.
+    pub fn div_mono(&self, m: &[u32]) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .filter_map(|(k, c)| Some((mono_div(k, m)?, c.clone())))
+                .collect(),
+        }
+    }
+
+    /// The rational content c with sign, such that `self / c` has coprime
+    /// integer coefficients and a positive leading coefficient.
+    pub fn content(&self) -> BigRational {
+        let mut num = BigInt::zero();
+        let mut den = BigInt::one();
+        for c in self.terms.values() {
+            num = num.gcd(c.numer());
+            den = den.lcm(c.denom());
+        }
+        if num.is_zero() {
+            return BigRational::one();
+        }
+        let c = BigRational::new(num, den);
+        match self.leading() {
+            Some((_, lc)) if lc.is_negative() => -c,
+            _ => c,
+        }
+    }
+
+    /// Exact division `self / d`; `None` if `d` does not divide `self`
+    /// (or `d` is 0). For a single divisor the lexicographic division
+    /// algorithm leaves remainder 0 exactly when `d | self`.
+    pub fn div_exact(&self, d: &Poly) -> Option<Poly> {
+        let (dm, dc) = d.leading()?;
+        let (dm, dc) = (dm.clone(), dc.clone());
+        let mut rem = self.clone();
+        let mut q = Poly::zero();
+        let mut steps = 0usize;
+        while let Some((m, c)) = rem.leading() {
+            steps += 1;
+            if steps > MAX_TERMS * 4 {
+                return None;
+            }
+            let qm = mono_div(m, &dm)?;
+            let qc = c / &dc;
+            let t = Poly::monomial(qc.clone(), &qm);
+            rem = rem.sub(&d.mul(&t).ok()?).ok()?;
+            q.add_term(qm, qc);
+        }
+        Some(q)
+    }
+
+    /// Coefficients of `self` as a polynomial in x_var: entry k multiplies x_var^k.
+    pub fn coeffs_in(&self, var: usize) -> Vec<Poly> {
+        let mut out: Vec<Poly> = Vec::new();
+        for (m, c) in &self.terms {
+            let k = m.get(var).copied().unwrap_or(0) as usize;
+            if out.len() <= k {
+                out.resize(k + 1, Poly::zero());
+            }
+            let mut rest = m.clone();
+            if var < rest.len() {
+                rest[var] = 0;
+            }
+            out[k].add_term(trim(rest), c.clone());
+        }
+        out
+    }
+
+    /// Apply a signed permutation of variables: x_i ↦ sign_i · x_{perm_i}.
+    pub fn signed_permute(&self, perm: &dyn Fn(usize) -> (usize, bool)) -> Poly {
+        let mut r = Poly::zero();
+        for (m, c) in &self.terms {
+            let mut nm: Mono = Vec::new();
+            let mut negate = false;
+            for (i, e) in m.iter().enumerate() {
+                if *e == 0 {
+                    continue;
+                }
+                let (j, neg) = perm(i);
+                if nm.len() <= j {
+                    nm.resize(j + 1, 0);
+                }
+                nm[j] += e;
+                negate ^= neg && e % 2 == 1;
+            }
+            r.add_term(trim(nm), if negate { -c.clone() } else { c.clone() });
+        }
+        r
+    }
+
+    /// Substitute x_var = 0.
+    pub fn set_zero(&self, var: usize) -> Poly {
+        Poly {
+            terms: self
+                .terms
+                .iter()
+                .filter(|(m, _)| m.get(var).copied().unwrap_or(0) == 0)
+                .map(|(m, c)| (m.clone(), c.clone()))
+                .collect(),
+        }
+    }
+}
+
+/// Divide `p` by the linear polynomial `(x_var - c)` (synthetic division in
+/// x_var; `c` free of x_var). `Some(quotient)` iff the remainder
+/// p|_{x_var = c} vanishes identically.
+pub fn div_linear(p: &Poly, var: usize, c: &Poly) -> Result<Option<Poly>, TooBig> {
+    let a = p.coeffs_in(var);
+    if a.is_empty() {
+        return Ok(Some(Poly::zero()));
+    }
+    // q_{n-1} = a_n; q_{k-1} = a_k + c q_k; remainder = a_0 + c q_0.
+    let n = a.len() - 1;
+    let mut q: Vec<Poly> = vec![Poly::zero(); n];
+    let mut carry = Poly::zero();
+    for k in (1..=n).rev() {
+        let qk = a[k].add(&c.mul(&carry)?)?;
+        q[k - 1] = qk.clone();
+        carry = qk;
+    }
+    let rem = a[0].add(&c.mul(&carry)?)?;
+    if !rem.is_zero() {
+        return Ok(None);
+    }
+    let mut out = Poly::zero();
+    for (k, qk) in q.into_iter().enumerate() {
+        let t = qk.mul_mono(&Poly::unit_mono(var, k as u32));
+        out = out.add(&t)?;
+    }
+    Ok(Some(out))
+}

@@ -1,0 +1,266 @@
+//! Rational functions N / Π fₖ^eₖ with a factored denominator.
+//!
+//! Keeping the denominator as a product of normalised factors (single
+//! variables, or primitive non-monomial polynomials with positive leading
+//! coefficient) makes sums cheap (the common denominator is the factorwise
+//! maximum, never a blind product) and keeps the result readable: SD's
+//! denominators stay powers of σ's instead of expanded products.
+
+use num_rational::BigRational;
+use num_traits::{One, Zero};
+
+use super::polynomial::{Mono, Poly, TooBig};
+
+/// A rational function `num / Π den[k].0 ^ den[k].1`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RatFun {
+    /// The numerator.
+    pub num: Poly,
+    /// Distinct normalised denominator factors with positive exponents.
+    pub den: Vec<(Poly, u32)>,
+}
+
+/// Split `p` (non-zero) into `c · x^m · rest` with `rest` primitive with
+/// positive leading coefficient.
+fn normalise(p: &Poly) -> (BigRational, Mono, Poly) {
+    let m = p.monomial_content();
+    let rest = p.div_mono(&m);
+    let c = rest.content();
+    let rest = rest.scale(&c.recip());
+    (c, m, rest)
+}
+
+impl RatFun {
+    /// A polynomial as a rational function.
+    pub fn poly(p: Poly) -> Self {
+        RatFun {
+            num: p,
+            den: Vec::new(),
+        }
+    }
+
+    /// A constant.
+    pub fn constant(c: BigRational) -> Self {
+        RatFun::poly(Poly::constant(c))
+    }
+
+    /// Whether the function is identically zero.
+    pub fn is_zero(&self) -> bool {
+        self.num.is_zero()
+    }
+
+    /// Bitmask of variables occurring anywhere.
+    pub fn var_mask(&self) -> u64 {
+        self.den
+            .iter()
+            .fold(self.num.var_mask(), |m, (f, _)| m | f.var_mask())
+    }
+
+    /// Build from a numerator and arbitrary (non-zero) denominator factors,
+    /// normalising the factors and cancelling what divides exactly.
+    pub fn from_parts(num: Poly, den: Vec<(Poly, u32)>) -> Result<Self, TooBig> {
+        let mut r = RatFun {
+            num,
+            den: Vec::new(),
+        };
+        for (f, e) in den {
+            if e == 0 {
+                continue;
+            }
+            let (c, m, rest) = normalise(&f);
+            r.num = r.num.scale(&num_traits::pow(c.recip(), e as usize));
+            for (i, me) in m.iter().enumerate() {
+                if *me > 0 {
+                    r.push_den(Poly::var(i), me * e);
+                }
+            }
+            if rest.as_constant().is_none() {
+                r.push_den(rest, e);
+            }
+        }
+        r.cancel()?;
+        Ok(r)
+    }
+
+    fn push_den(&mut self, f: Poly, e: u32) {
+        match self.den.iter_mut().find(|(g, _)| *g == f) {
+            Some((_, ge)) => *ge += e,
+            None => self.den.push((f, e)),
+        }
+    }
+
+    /// Cancel denominator factors that divide the numerator exactly.
+    fn cancel(&mut self) -> Result<(), TooBig> {
+        if self.num.is_zero() {
+            self.den.clear();
+            return Ok(());
+        }
+        for k in 0..self.den.len() {
+            loop {
+                if self.den[k].1 == 0 {
+                    break;
+                }
+                match self.num.div_exact(&self.den[k].0) {
+                    Some(q) => {
+                        self.num = q;
+                        self.den[k].1 -= 1;
+                    }
+                    None => break,
+                }
+            }
+        }
+        self.den.retain(|(_, e)| *e > 0);
+        self.den.sort_by(|a, b| {
+            a.0.leading()
+                .map(|t| t.0)
+                .cmp(&b.0.leading().map(|t| t.0))
+                .then(a.1.cmp(&b.1))
+        });
+        Ok(())
+    }
+
+    /// Π over `den` of f^(target - own), for the factors of a common denominator.
+    fn lift(&self, common: &[(Poly, u32)]) -> Result<Poly, TooBig> {
+        let mut p = self.num.clone();
+        for (f, e) in common {
+            let own = self
+                .den
+                .iter()
+                .find(|(g, _)| g == f)
+                .map_or(0, |(_, ge)| *ge);
+            if *e > own {
+                p = p.mul(&f.pow(e - own)?)?;
+            }
+        }
+        Ok(p)
+    }
+
+    /// `self + other`.
+    pub fn add(&self, other: &RatFun) -> Result<RatFun, TooBig> {
+        let mut common = self.den.clone();
+        for (f, e) in &other.den {
+            match common.iter_mut().find(|(g, _)| g == f) {
+                Some((_, ce)) => *ce = (*ce).max(*e),
+                None => common.push((f.clone(), *e)),
+            }
+        }
+        let num = self.lift(&common)?.add(&other.lift(&common)?)?;
+        let mut r = RatFun { num, den: common };
+        r.cancel()?;
+        Ok(r)
+    }
+
+    /// `self - other`.
+    pub fn sub(&self, other: &RatFun) -> Result<RatFun, TooBig> {
+        self.add(&other.neg())
+    }
+
+    /// `-self`.
+    pub fn neg(&self) -> RatFun {
+        RatFun {
+            num: self.num.neg(),
+            den: self.den.clone(),
+        }
+    }
+
+    /// `self · other`.
+    pub fn mul(&self, other: &RatFun) -> Result<RatFun, TooBig> {
+        let mut r = RatFun {
+            num: self.num.mul(&other.num)?,
+            den: self.den.clone(),
+        };
+        for (f, e) in &other.den {
+            r.push_den(f.clone(), *e);
+        }
+        r.cancel()?;
+        Ok(r)
+    }
+
+    /// `1 / self`; `None` when `self` is identically 0.
+    pub fn inv(&self) -> Result<Option<RatFun>, TooBig> {
+        if self.num.is_zero() {
+            return Ok(None);
+        }
+        let mut num = Poly::one();
+        for (f, e) in &self.den {
+            num = num.mul(&f.pow(*e)?)?;
+        }
+        RatFun::from_parts(num, vec![(self.num.clone(), 1)]).map(Some)
+    }
+
+    /// `self^n` for an integer n; `None` for a negative power of 0.
+    pub fn powi(&self, n: i64) -> Result<Option<RatFun>, TooBig> {
+        let base = if n < 0 {
+            match self.inv()? {
+                Some(b) => b,
+                None => return Ok(None),
+            }
+        } else {
+            self.clone()
+        };
+        let k = u32::try_from(n.unsigned_abs()).map_err(|_| TooBig)?;
+        let num = base.num.pow(k)?;
+        let den = base.den.iter().map(|(f, e)| (f.clone(), e * k)).collect();
+        Ok(Some(RatFun { num, den }))
+    }
+
+    /// Apply a signed permutation of the variables (x_i ↦ ±x_j).
+    pub fn signed_permute(&self, perm: &dyn Fn(usize) -> (usize, bool)) -> Result<RatFun, TooBig> {
+        let den = self
+            .den
+            .iter()
+            .map(|(f, e)| (f.signed_permute(perm), *e))
+            .collect();
+        RatFun::from_parts(self.num.signed_permute(perm), den)
+    }
+
+    /// Substitute x_var = 0; `None` when a denominator factor vanishes there.
+    pub fn set_zero(&self, var: usize) -> Result<Option<RatFun>, TooBig> {
+        let mut den = Vec::new();
+        for (f, e) in &self.den {
+            let g = f.set_zero(var);
+            if g.is_zero() {
+                return Ok(None);
+            }
+            den.push((g, *e));
+        }
+        RatFun::from_parts(self.num.set_zero(var), den).map(Some)
+    }
+
+    /// The exact quotient `self / (x_i + s·x_j)` (s = ±1) when the numerator
+    /// vanishes on the hyperplane x_i = −s·x_j; `None` otherwise.
+    pub fn div_linear(&self, i: usize, j: usize, s: i64) -> Result<Option<RatFun>, TooBig> {
+        // x_i + s x_j = x_i - c with c = -s x_j.
+        let c = Poly::var(j).scale(&BigRational::from_integer((-s).into()));
+        match super::polynomial::div_linear(&self.num, i, &c)? {
+            Some(q) => {
+                let mut r = RatFun {
+                    num: q,
+                    den: self.den.clone(),
+                };
+                r.cancel()?;
+                Ok(Some(r))
+            }
+            None => Ok(None),
+        }
+    }
+
+    /// The constant value, if the function is constant.
+    pub fn as_constant(&self) -> Option<BigRational> {
+        if self.den.is_empty() {
+            self.num.as_constant()
+        } else {
+            None
+        }
+    }
+
+    /// 1.
+    pub fn one() -> Self {
+        RatFun::constant(BigRational::one())
+    }
+
+    /// 0.
+    pub fn zero() -> Self {
+        RatFun::constant(BigRational::zero())
+    }
+}
