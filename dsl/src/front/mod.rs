@@ -1,0 +1,6 @@
+//! The front end: parsing, name resolution and lowering into the CAS.
+
+pub mod ast;
+pub mod lower;
+pub mod parse;
+pub mod sema;

@@ -1,0 +1,398 @@
+//! Source text → statements → syntax trees.
+//!
+//! The source is first cut into statements at `;` and at newlines outside
+//! parentheses (a line ending in an operator, `=`, `(` or `,`, or a next line
+//! starting with an operator, continues the statement). Each statement is
+//! parsed on its own, so one syntax error never hides the others.
+
+use pest::Parser;
+use pest::iterators::Pair;
+
+use super::ast::{BinOp, Expr, Stmt};
+use crate::cas::rat;
+use crate::diag::Error;
+use crate::span::Span;
+
+#[derive(pest_derive::Parser)]
+#[grammar = "front/grammar.pest"]
+struct EnergyParser;
+
+/// Nesting limit for parentheses and `^` chains per statement (keeps the
+/// recursive descent far from the stack limit on adversarial input).
+const MAX_NESTING: usize = 100;
+
+/// Parse a whole source text: the statements that parsed, and one error per
+/// statement that did not.
+pub fn parse_source(source: &str) -> (Vec<Stmt>, Vec<Error>) {
+    let mut stmts = Vec::new();
+    let mut errors = Vec::new();
+    for span in split_statements(source) {
+        match parse_statement(source, span) {
+            Ok(s) => stmts.push(s),
+            Err(e) => errors.push(e),
+        }
+    }
+    (stmts, errors)
+}
+
+/// Byte ranges of the statements (blank and comment-only pieces dropped).
+pub fn split_statements(source: &str) -> Vec<Span> {
+    let bytes = source.as_bytes();
+    let mut out = Vec::new();
+    let mut start = 0;
+    let mut depth = 0usize;
+    let mut in_comment = false;
+    let mut last_sig: Option<u8> = None;
+    let mut i = 0;
+    let push = |start: usize, end: usize, sig: bool, out: &mut Vec<Span>| {
+        if sig {
+            out.push(Span::new(start, end));
+        }
+    };
+    while i < bytes.len() {
+        let c = bytes[i];
+        if in_comment {
+            if c == b'\n' {
+                in_comment = false;
+            } else {
+                i += 1;
+                continue;
+            }
+        }
+        match c {
+            b'#' => in_comment = true,
+            b'(' => depth += 1,
+            b')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        let ends = match c {
+            b';' => true,
+            b'\n' if depth == 0 => {
+                let continues_back = matches!(
+                    last_sig,
+                    Some(b'+' | b'-' | b'*' | b'/' | b'^' | b'=' | b'(' | b',')
+                );
+                !continues_back && !next_line_continues(bytes, i + 1)
+            }
+            _ => false,
+        };
+        if ends {
+            push(start, i, last_sig.is_some(), &mut out);
+            start = i + 1;
+            last_sig = None;
+            depth = 0;
+        } else if !c.is_ascii_whitespace() && c != b'#' {
+            last_sig = Some(c);
+        }
+        i += 1;
+    }
+    push(start, bytes.len(), last_sig.is_some(), &mut out);
+    out
+}
+
+/// Whether the next non-blank, non-comment line starts with a binary operator.
+fn next_line_continues(bytes: &[u8], mut i: usize) -> bool {
+    while i < bytes.len() {
+        match bytes[i] {
+            b' ' | b'\t' | b'\r' | b'\n' => i += 1,
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'+' | b'-' | b'*' | b'/' | b'^' => return true,
+            _ => return false,
+        }
+    }
+    false
+}
+
+fn parse_statement(source: &str, span: Span) -> Result<Stmt, Error> {
+    let text = &source[span.range()];
+    check_nesting(text, span)?;
+    let mut pairs = EnergyParser::parse(Rule::statement, text)
+        .map_err(|e| syntax_error(&e, text, span.start))?;
+    let stmt = pairs
+        .next()
+        .and_then(|p| p.into_inner().next())
+        .ok_or_else(|| Error::Syntax {
+            span,
+            message: "empty statement".into(),
+        })?;
+    let b = Builder { base: span.start };
+    b.statement(stmt)
+}
+
+fn check_nesting(text: &str, span: Span) -> Result<(), Error> {
+    let mut depth = 0usize;
+    let mut carets = 0usize;
+    for (i, c) in text.char_indices() {
+        match c {
+            '(' => depth += 1,
+            ')' => depth = depth.saturating_sub(1),
+            '^' => carets += 1,
+            _ => {}
+        }
+        if depth > MAX_NESTING || carets > MAX_NESTING {
+            let at = span.start + i;
+            return Err(Error::Syntax {
+                span: Span::new(at, at + 1),
+                message: format!(
+                    "expression nested too deeply (more than {MAX_NESTING} levels of parentheses or `^`)"
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+fn rule_name(r: &Rule) -> Option<&'static str> {
+    Some(match r {
+        Rule::expr
+        | Rule::term
+        | Rule::unary
+        | Rule::power
+        | Rule::paren
+        | Rule::call
+        | Rule::number
+        | Rule::sign => "an expression",
+        Rule::ident => "a name",
+        Rule::add_op | Rule::mul_op => "an operator",
+        Rule::EOI => "end of statement",
+        Rule::dim_value => "a dimension (2 or 3)",
+        _ => return None,
+    })
+}
+
+fn syntax_error(e: &pest::error::Error<Rule>, text: &str, base: usize) -> Error {
+    let pos = match e.location {
+        pest::error::InputLocation::Pos(p) => p,
+        pest::error::InputLocation::Span((s, _)) => s,
+    };
+    let mut expected: Vec<&str> = match &e.variant {
+        pest::error::ErrorVariant::ParsingError { positives, .. } => {
+            positives.iter().filter_map(rule_name).collect()
+        }
+        pest::error::ErrorVariant::CustomError { .. } => Vec::new(),
+    };
+    expected.sort_unstable();
+    expected.dedup();
+    // Put "an expression" first, "end of statement" last.
+    expected.sort_by_key(|s| match *s {
+        "an expression" => 0,
+        "end of statement" => 2,
+        _ => 1,
+    });
+    let found = text[pos..].trim_start();
+    let (found_text, len) = match found.chars().next() {
+        None => ("end of statement".to_string(), 0),
+        Some(_) => {
+            let tok: String = found
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '.')
+                .collect();
+            let tok = if tok.is_empty() {
+                found.chars().next().map(String::from).unwrap_or_default()
+            } else {
+                tok
+            };
+            let len = tok.len();
+            (format!("`{tok}`"), len)
+        }
+    };
+    let start = base + pos + (text[pos..].len() - found.len());
+    let message = if expected.is_empty() {
+        format!("unexpected {found_text}")
+    } else {
+        format!("expected {}, found {found_text}", join_or(&expected))
+    };
+    Error::Syntax {
+        span: Span::new(
+            start,
+            start + len.max(usize::from(found_text != "end of statement")),
+        ),
+        message,
+    }
+}
+
+fn join_or(items: &[&str]) -> String {
+    match items {
+        [] => String::new(),
+        [a] => a.to_string(),
+        [init @ .., last] => format!("{} or {last}", init.join(", ")),
+    }
+}
+
+struct Builder {
+    base: usize,
+}
+
+impl Builder {
+    fn span(&self, p: &Pair<Rule>) -> Span {
+        let s = p.as_span();
+        Span::new(self.base + s.start(), self.base + s.end())
+    }
+
+    fn statement(&self, p: Pair<Rule>) -> Result<Stmt, Error> {
+        let span = self.span(&p);
+        let rule = p.as_rule();
+        if rule == Rule::expr {
+            let expr = self.expr(p)?;
+            return Ok(Stmt::Psi {
+                key_span: expr.span(),
+                expr,
+                bare: true,
+            });
+        }
+        let mut inner = p.into_inner();
+        let mut next = || {
+            inner.next().ok_or_else(|| Error::Syntax {
+                span,
+                message: "incomplete statement".into(),
+            })
+        };
+        Ok(match rule {
+            Rule::dim_stmt => {
+                let _kw = next()?;
+                let v = next()?;
+                Stmt::Dim {
+                    value: v.as_str().to_string(),
+                    value_span: self.span(&v),
+                    span,
+                }
+            }
+            Rule::param_stmt | Rule::let_stmt => {
+                let _kw = next()?;
+                let name = next()?;
+                let expr = self.expr(next()?)?;
+                let (n, ns) = (name.as_str().to_string(), self.span(&name));
+                if rule == Rule::param_stmt {
+                    Stmt::Param {
+                        name: n,
+                        name_span: ns,
+                        expr,
+                        span,
+                    }
+                } else {
+                    Stmt::Let {
+                        name: n,
+                        name_span: ns,
+                        expr,
+                        span,
+                    }
+                }
+            }
+            _ => {
+                let kw = next()?;
+                let expr = self.expr(next()?)?;
+                Stmt::Psi {
+                    expr,
+                    key_span: self.span(&kw),
+                    bare: false,
+                }
+            }
+        })
+    }
+
+    /// `expr`, `term`, `unary`, `power` and atoms.
+    fn expr(&self, p: Pair<Rule>) -> Result<Expr, Error> {
+        let span = self.span(&p);
+        match p.as_rule() {
+            Rule::expr | Rule::term => {
+                let mut inner = p.into_inner();
+                let first = match inner.next() {
+                    Some(f) => self.expr(f)?,
+                    None => {
+                        return Err(Error::Syntax {
+                            span,
+                            message: "empty expression".into(),
+                        });
+                    }
+                };
+                let mut rest = Vec::new();
+                while let (Some(op), Some(rhs)) = (inner.next(), inner.next()) {
+                    let bop = match op.as_str() {
+                        "+" => BinOp::Add,
+                        "-" => BinOp::Sub,
+                        "*" => BinOp::Mul,
+                        _ => BinOp::Div,
+                    };
+                    rest.push((bop, self.span(&op), self.expr(rhs)?));
+                }
+                Ok(if rest.is_empty() {
+                    first
+                } else {
+                    Expr::Chain(Box::new(first), rest, span)
+                })
+            }
+            Rule::unary => {
+                let mut negative = false;
+                let mut body = None;
+                for q in p.into_inner() {
+                    match q.as_rule() {
+                        Rule::sign => negative ^= q.as_str() == "-",
+                        _ => body = Some(self.expr(q)?),
+                    }
+                }
+                let body = body.ok_or(Error::Syntax {
+                    span,
+                    message: "expected an expression".into(),
+                })?;
+                Ok(if negative {
+                    Expr::Neg(Box::new(body), span)
+                } else {
+                    body
+                })
+            }
+            Rule::power => {
+                let mut inner = p.into_inner();
+                let base = match inner.next() {
+                    Some(b) => self.expr(b)?,
+                    None => {
+                        return Err(Error::Syntax {
+                            span,
+                            message: "expected an expression".into(),
+                        });
+                    }
+                };
+                Ok(match inner.next() {
+                    Some(e) => Expr::Pow(Box::new(base), Box::new(self.expr(e)?), span),
+                    None => base,
+                })
+            }
+            Rule::paren => match p.into_inner().next() {
+                Some(e) => self.expr(e),
+                None => Err(Error::Syntax {
+                    span,
+                    message: "empty parentheses".into(),
+                }),
+            },
+            Rule::call => {
+                let mut inner = p.into_inner();
+                let name = inner.next().ok_or(Error::Syntax {
+                    span,
+                    message: "expected a function name".into(),
+                })?;
+                let args = inner.map(|a| self.expr(a)).collect::<Result<Vec<_>, _>>()?;
+                Ok(Expr::Call(
+                    name.as_str().to_string(),
+                    self.span(&name),
+                    args,
+                    span,
+                ))
+            }
+            Rule::ident => Ok(Expr::Ident(p.as_str().to_string(), span)),
+            Rule::number => match rat::parse_decimal(p.as_str()) {
+                Some(r) => Ok(Expr::Num(r, span)),
+                None => Err(Error::Syntax {
+                    span,
+                    message: "number out of range (exponent beyond ±4096)".into(),
+                }),
+            },
+            _ => Err(Error::Syntax {
+                span,
+                message: "unexpected input".into(),
+            }),
+        }
+    }
+}

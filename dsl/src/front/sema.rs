@@ -1,0 +1,567 @@
+//! Name resolution and statement-level checks.
+//!
+//! Walks the statements in order. Lets and params are visible below their
+//! definition. Lets/params may shadow the *alias* names (IC, IIC, IIIC, J)
+//! but not the built-in variables (I1, I2, I3, s1, s2, s3, d), the functions
+//! or the keywords. Every problem found is recorded; resolution continues
+//! with a poisoned placeholder so one mistake does not cause a cascade.
+
+use std::collections::HashMap;
+
+use num_rational::BigRational;
+
+use super::ast::{BinOp, Expr, Stmt};
+use crate::cas::{Graph, eval};
+use crate::diag::Error;
+use crate::span::Span;
+
+/// A built-in variable or alias.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Var {
+    /// I1 = Σσ.
+    I1,
+    /// I2 = Σσ².
+    I2,
+    /// I3 = Πσ.
+    I3,
+    /// The stretch σ_k (`s{k+1}`).
+    S(u8),
+    /// The dimension.
+    D,
+    /// IC = tr C = I2.
+    IC,
+    /// IIC = ‖C‖² (Appendix A).
+    IIC,
+    /// IIIC = det C = I3².
+    IIIC,
+    /// J = det F = I3.
+    J,
+}
+
+/// A function of the language.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Func {
+    /// `sqrt(x)`.
+    Sqrt,
+    /// `log(x)`, natural.
+    Log,
+    /// `exp(x)`.
+    Exp,
+    /// `pow(a, b)`.
+    Pow,
+}
+
+const BUILTINS: [(&str, Var); 7] = [
+    ("I1", Var::I1),
+    ("I2", Var::I2),
+    ("I3", Var::I3),
+    ("s1", Var::S(0)),
+    ("s2", Var::S(1)),
+    ("s3", Var::S(2)),
+    ("d", Var::D),
+];
+const ALIASES: [(&str, Var); 4] = [
+    ("IC", Var::IC),
+    ("IIC", Var::IIC),
+    ("IIIC", Var::IIIC),
+    ("J", Var::J),
+];
+const FUNCS: [(&str, Func, usize); 4] = [
+    ("sqrt", Func::Sqrt, 1),
+    ("log", Func::Log, 1),
+    ("exp", Func::Exp, 1),
+    ("pow", Func::Pow, 2),
+];
+const KEYWORDS: [&str; 4] = ["psi", "param", "let", "dim"];
+
+/// A resolved expression.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RExpr {
+    /// A constant.
+    Num(BigRational),
+    /// A built-in variable or alias.
+    Var(Var),
+    /// Parameter k.
+    Param(u16),
+    /// The value of let number k.
+    Let(usize),
+    /// `-x`.
+    Neg(Box<RExpr>),
+    /// A flat chain of `+ -` or `* /`; each operand keeps its span.
+    Chain(Box<RExpr>, Vec<(BinOp, RExpr, Span)>),
+    /// `base ^ exp` (also `pow(base, exp)`), with the span of the power.
+    Pow(Box<RExpr>, Box<RExpr>, Span),
+    /// `sqrt`, `log` or `exp` of an argument (with its span).
+    Call(Func, Box<RExpr>, Span),
+    /// Something already reported as an error.
+    Poison,
+}
+
+/// A declared parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParamInfo {
+    /// Name.
+    pub name: String,
+    /// Default value.
+    pub default: f64,
+    /// The statement's span.
+    pub span: Span,
+}
+
+/// A `let`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LetInfo {
+    /// Name.
+    pub name: String,
+    /// Definition.
+    pub expr: RExpr,
+    /// Whether the definition mentions `d` (directly or through other lets).
+    pub mentions_d: bool,
+}
+
+/// A resolved program.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Program {
+    /// Parameters in declaration order.
+    pub params: Vec<ParamInfo>,
+    /// Lets in definition order.
+    pub lets: Vec<LetInfo>,
+    /// The energy and the span of its definition.
+    pub psi: RExpr,
+    /// The span of the `psi = …` expression.
+    pub psi_span: Span,
+    /// `dim N` if declared, with its span.
+    pub dim: Option<(u8, Span)>,
+    /// Every use of a stretch: (k, span).
+    pub stretch_uses: Vec<(u8, Span)>,
+}
+
+#[derive(Clone, Copy)]
+enum Def {
+    Param(u16, Span),
+    Let(usize, Span),
+}
+
+impl Def {
+    fn span(self) -> Span {
+        match self {
+            Def::Param(_, s) | Def::Let(_, s) => s,
+        }
+    }
+}
+
+struct Resolver<'a> {
+    scope: HashMap<String, Def>,
+    all_defs: &'a HashMap<String, Span>,
+    errors: Vec<Error>,
+    lets_mention_d: Vec<bool>,
+    stretch_uses: Vec<(u8, Span)>,
+    /// `Some(param name)` while resolving a parameter default (constants only).
+    constant_of: Option<String>,
+    /// Test mode: unknown identifiers become new parameters.
+    free_params: bool,
+    params: Vec<ParamInfo>,
+}
+
+/// Resolve `stmts`. `failed` are the source texts of statements that did not
+/// parse (used to avoid a spurious "missing psi" when psi had a syntax error).
+pub fn resolve(
+    stmts: &[Stmt],
+    failed: &[&str],
+    free_params: bool,
+    source_len: usize,
+) -> Result<Program, Vec<Error>> {
+    let mut all_defs: HashMap<String, Span> = HashMap::new();
+    for s in stmts {
+        if let Stmt::Param {
+            name, name_span, ..
+        }
+        | Stmt::Let {
+            name, name_span, ..
+        } = s
+        {
+            all_defs.entry(name.clone()).or_insert(*name_span);
+        }
+    }
+    let mut r = Resolver {
+        scope: HashMap::new(),
+        all_defs: &all_defs,
+        errors: Vec::new(),
+        lets_mention_d: Vec::new(),
+        stretch_uses: Vec::new(),
+        constant_of: None,
+        free_params,
+        params: Vec::new(),
+    };
+    let mut lets: Vec<LetInfo> = Vec::new();
+    let mut psi: Option<(RExpr, Span, Span)> = None;
+    let mut dim: Option<(u8, Span)> = None;
+    for s in stmts {
+        match s {
+            Stmt::Dim {
+                value,
+                value_span,
+                span,
+            } => {
+                if let Some((_, first)) = dim {
+                    r.errors.push(Error::Redefinition {
+                        span: *span,
+                        first,
+                        name: "dim".into(),
+                    });
+                    continue;
+                }
+                match value.as_str() {
+                    "2" => dim = Some((2, *span)),
+                    "3" => dim = Some((3, *span)),
+                    _ => r.errors.push(Error::BadDim {
+                        span: *value_span,
+                        found: value.clone(),
+                    }),
+                }
+            }
+            Stmt::Param {
+                name,
+                name_span,
+                expr,
+                span,
+            } => {
+                let ok_name = r.check_new_name(name, *name_span);
+                r.constant_of = Some(name.clone());
+                let e = r.expr(expr);
+                r.constant_of = None;
+                let default = r.constant_value(name, &e, expr.span());
+                if ok_name {
+                    let k = r.params.len() as u16;
+                    r.params.push(ParamInfo {
+                        name: name.clone(),
+                        default: default.unwrap_or(f64::NAN),
+                        span: *span,
+                    });
+                    r.scope.insert(name.clone(), Def::Param(k, *name_span));
+                }
+            }
+            Stmt::Let {
+                name,
+                name_span,
+                expr,
+                ..
+            } => {
+                let ok_name = r.check_new_name(name, *name_span);
+                let (e, md) = r.expr_tracking_d(expr);
+                if ok_name {
+                    r.scope
+                        .insert(name.clone(), Def::Let(lets.len(), *name_span));
+                    r.lets_mention_d.push(md);
+                    lets.push(LetInfo {
+                        name: name.clone(),
+                        expr: e,
+                        mentions_d: md,
+                    });
+                }
+            }
+            Stmt::Psi { expr, key_span, .. } => {
+                let e = r.expr(expr);
+                if let Some((_, first, _)) = &psi {
+                    r.errors.push(Error::Redefinition {
+                        span: *key_span,
+                        first: *first,
+                        name: "psi".into(),
+                    });
+                } else {
+                    psi = Some((e, *key_span, expr.span()));
+                }
+            }
+        }
+    }
+    let may_be_psi = failed.iter().any(|t| {
+        let t = t.trim_start();
+        !(t.starts_with("param") || t.starts_with("let") || t.starts_with("dim"))
+    });
+    if psi.is_none() && !may_be_psi {
+        let end = source_len;
+        r.errors.push(Error::MissingPsi {
+            span: Span::new(end, end),
+        });
+    }
+    if let (Some((2, dspan)), false) = (dim, r.stretch_uses.is_empty()) {
+        for (k, span) in &r.stretch_uses {
+            if *k >= 2 {
+                r.errors.push(Error::StretchOutOfDim {
+                    span: *span,
+                    name: format!("s{}", k + 1),
+                    dim: 2,
+                    declared: Some(dspan),
+                });
+            }
+        }
+    }
+    if !r.errors.is_empty() {
+        r.errors.sort_by_key(|e| e.span().start);
+        return Err(r.errors);
+    }
+    let (psi, _, psi_span) = psi.unwrap_or((RExpr::Poison, Span::default(), Span::default()));
+    Ok(Program {
+        params: r.params,
+        lets,
+        psi,
+        psi_span,
+        dim,
+        stretch_uses: r.stretch_uses,
+    })
+}
+
+impl Resolver<'_> {
+    /// Check that `name` may be defined here; records the error if not.
+    fn check_new_name(&mut self, name: &str, span: Span) -> bool {
+        let what = if BUILTINS.iter().any(|(n, _)| *n == name) {
+            Some("a built-in variable")
+        } else if FUNCS.iter().any(|(n, ..)| *n == name) {
+            Some("a function")
+        } else if KEYWORDS.contains(&name) {
+            Some("a keyword")
+        } else {
+            None
+        };
+        if let Some(what) = what {
+            self.errors.push(Error::Reserved {
+                span,
+                name: name.into(),
+                what,
+            });
+            return false;
+        }
+        if let Some(def) = self.scope.get(name) {
+            self.errors.push(Error::Redefinition {
+                span,
+                first: def.span(),
+                name: name.into(),
+            });
+            return false;
+        }
+        true
+    }
+
+    fn expr_tracking_d(&mut self, e: &Expr) -> (RExpr, bool) {
+        let r = self.expr(e);
+        let md = mentions_d(&r, &self.lets_mention_d);
+        (r, md)
+    }
+
+    fn expr(&mut self, e: &Expr) -> RExpr {
+        match e {
+            Expr::Num(r, _) => RExpr::Num(r.clone()),
+            Expr::Ident(name, span) => self.ident(name, *span),
+            Expr::Neg(x, _) => RExpr::Neg(Box::new(self.expr(x))),
+            Expr::Chain(first, rest, _) => {
+                let f = self.expr(first);
+                let rest = rest
+                    .iter()
+                    .map(|(op, _, x)| (*op, self.expr(x), x.span()))
+                    .collect();
+                RExpr::Chain(Box::new(f), rest)
+            }
+            Expr::Pow(b, x, span) => {
+                RExpr::Pow(Box::new(self.expr(b)), Box::new(self.expr(x)), *span)
+            }
+            Expr::Call(name, name_span, args, span) => {
+                let args_r: Vec<RExpr> = args.iter().map(|a| self.expr(a)).collect();
+                let Some((_, f, arity)) = FUNCS.iter().find(|(n, ..)| n == name) else {
+                    let suggestion = suggest(
+                        name,
+                        FUNCS.iter().map(|(n, ..)| *n),
+                        &[("ln", "log"), ("power", "pow"), ("sqr", "sqrt")],
+                    );
+                    self.errors.push(Error::UnknownFunction {
+                        span: *name_span,
+                        name: name.clone(),
+                        suggestion,
+                    });
+                    return RExpr::Poison;
+                };
+                if args.len() != *arity {
+                    self.errors.push(Error::Arity {
+                        span: *span,
+                        name: name.clone(),
+                        expected: *arity,
+                        found: args.len(),
+                    });
+                    return RExpr::Poison;
+                }
+                let mut it = args_r.into_iter();
+                match (f, it.next(), it.next()) {
+                    (Func::Pow, Some(a), Some(b)) => RExpr::Pow(Box::new(a), Box::new(b), *span),
+                    (f, Some(a), _) => RExpr::Call(*f, Box::new(a), args[0].span()),
+                    _ => RExpr::Poison,
+                }
+            }
+        }
+    }
+
+    fn ident(&mut self, name: &str, span: Span) -> RExpr {
+        if let Some(pname) = &self.constant_of
+            && (BUILTINS
+                .iter()
+                .chain(ALIASES.iter())
+                .any(|(n, _)| *n == name)
+                || self.scope.contains_key(name))
+        {
+            self.errors.push(Error::ParamNotConstant {
+                span,
+                name: pname.clone(),
+                uses: name.into(),
+            });
+            return RExpr::Poison;
+        }
+        if let Some((_, v)) = BUILTINS.iter().find(|(n, _)| *n == name) {
+            if let Var::S(k) = v {
+                self.stretch_uses.push((*k, span));
+            }
+            return RExpr::Var(*v);
+        }
+        if let Some(def) = self.scope.get(name) {
+            return match def {
+                Def::Param(k, _) => RExpr::Param(*k),
+                Def::Let(k, _) => RExpr::Let(*k),
+            };
+        }
+        if let Some((_, v)) = ALIASES.iter().find(|(n, _)| *n == name) {
+            return RExpr::Var(*v);
+        }
+        if self.free_params && self.constant_of.is_none() {
+            let k = self.params.len() as u16;
+            self.params.push(ParamInfo {
+                name: name.into(),
+                default: 1.0,
+                span,
+            });
+            self.scope.insert(name.into(), Def::Param(k, span));
+            return RExpr::Param(k);
+        }
+        let known: Vec<&str> = BUILTINS
+            .iter()
+            .chain(ALIASES.iter())
+            .map(|(n, _)| *n)
+            .chain(self.scope.keys().map(|s| s.as_str()))
+            .chain(self.all_defs.keys().map(|s| s.as_str()))
+            .collect();
+        let suggestion = suggest(
+            name,
+            known.into_iter(),
+            &[
+                ("sigma1", "s1"),
+                ("sigma2", "s2"),
+                ("sigma3", "s3"),
+                ("dim", "d"),
+            ],
+        );
+        let defined_later = self
+            .all_defs
+            .get(name)
+            .copied()
+            .filter(|s| s.start > span.start);
+        let suggestion = if defined_later.is_some() {
+            None
+        } else {
+            suggestion
+        };
+        if let Some(pname) = &self.constant_of {
+            self.errors.push(Error::ParamNotConstant {
+                span,
+                name: pname.clone(),
+                uses: name.into(),
+            });
+        } else {
+            self.errors.push(Error::UnknownIdent {
+                span,
+                name: name.into(),
+                suggestion,
+                defined_later,
+            });
+        }
+        RExpr::Poison
+    }
+
+    /// Evaluate a parameter default; records non-finite / division-by-zero errors.
+    fn constant_value(&mut self, name: &str, e: &RExpr, span: Span) -> Option<f64> {
+        let mut g = Graph::new(Vec::new());
+        let mut errs = Vec::new();
+        let id = super::lower::lower_expr(&mut g, e, 3, &[], &[], &mut errs);
+        self.errors.extend(errs);
+        let id = id?;
+        let v = eval(&g, id, &crate::cas::Env::new(3, &[], &[]));
+        if !v.is_finite() {
+            self.errors.push(Error::ParamNotFinite {
+                span,
+                name: name.into(),
+                value: format!("{v}"),
+            });
+            return None;
+        }
+        Some(v)
+    }
+}
+
+/// Whether `e` mentions `d`, directly or through lets.
+pub fn mentions_d(e: &RExpr, lets: &[bool]) -> bool {
+    match e {
+        RExpr::Var(Var::D) => true,
+        RExpr::Let(k) => lets.get(*k).copied().unwrap_or(false),
+        RExpr::Neg(x) | RExpr::Call(_, x, _) => mentions_d(x, lets),
+        RExpr::Chain(f, rest) => {
+            mentions_d(f, lets) || rest.iter().any(|(_, x, _)| mentions_d(x, lets))
+        }
+        RExpr::Pow(b, x, _) => mentions_d(b, lets) || mentions_d(x, lets),
+        RExpr::Num(_) | RExpr::Var(_) | RExpr::Param(_) | RExpr::Poison => false,
+    }
+}
+
+/// The closest candidate by edit distance (case-insensitive matches first),
+/// if it is close enough to be a plausible typo; `extra` maps common
+/// misspellings to their intended names.
+fn suggest<'a>(
+    name: &str,
+    candidates: impl Iterator<Item = &'a str>,
+    extra: &[(&str, &str)],
+) -> Option<String> {
+    if let Some((_, to)) = extra
+        .iter()
+        .find(|(from, _)| from.eq_ignore_ascii_case(name))
+    {
+        return Some((*to).to_string());
+    }
+    let mut best: Option<(usize, String)> = None;
+    let mut cands: Vec<&str> = candidates.collect();
+    cands.sort_unstable();
+    cands.dedup();
+    for c in cands {
+        if c == name {
+            continue;
+        }
+        let d = if c.eq_ignore_ascii_case(name) {
+            0
+        } else {
+            levenshtein(&name.to_lowercase(), &c.to_lowercase()) + 1
+        };
+        let limit = 1 + name.chars().count().max(c.chars().count()) / 3;
+        if d <= limit && best.as_ref().is_none_or(|(bd, _)| d < *bd) {
+            best = Some((d, c.to_string()));
+        }
+    }
+    best.map(|(_, s)| s)
+}
+
+fn levenshtein(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for i in 1..=a.len() {
+        let mut cur = vec![i; b.len() + 1];
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            cur[j] = (prev[j] + 1).min(cur[j - 1] + 1).min(prev[j - 1] + cost);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
