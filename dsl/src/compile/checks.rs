@@ -1,0 +1,201 @@
+//! Properties of Ψ proved (or, for isotropy, at worst checked numerically)
+//! on its σ-form: isotropy, sign symmetry, the barrier property.
+
+use num_traits::Zero;
+
+use crate::cas::{Env, Graph, Id, Node, Sym, Tape};
+use crate::diag::Error;
+use crate::poly::{Converter, Proof, RatFun};
+use crate::span::Span;
+
+/// The pairs (i, j) of stretches in `dim`.
+pub fn pairs(dim: u8) -> Vec<(u8, u8)> {
+    if dim == 2 {
+        vec![(0, 1)]
+    } else {
+        vec![(0, 1), (0, 2), (1, 2)]
+    }
+}
+
+/// Whether the (signed) substitution σi ↦ s·σj, σj ↦ s·σi leaves `psi`
+/// unchanged: `Some(true/false)` when decided exactly (rational identity or
+/// canonical equality), `None` otherwise.
+fn invariant_under(
+    g: &mut Graph,
+    conv: &mut Converter,
+    psi_s: Id,
+    rf: Option<&RatFun>,
+    i: u8,
+    j: u8,
+    negate: bool,
+) -> Option<bool> {
+    if let Some(rf) = rf {
+        let perm = |v: usize| {
+            if v == i as usize {
+                (j as usize, negate)
+            } else if v == j as usize {
+                (i as usize, negate)
+            } else {
+                (v, false)
+            }
+        };
+        if let Ok(p) = rf.signed_permute(&perm)
+            && let Ok(diff) = rf.sub(&p)
+        {
+            return Some(diff.is_zero());
+        }
+    }
+    let _ = conv;
+    let si = g.sym(Sym::Sigma(i));
+    let sj = g.sym(Sym::Sigma(j));
+    let (ti, tj) = if negate {
+        (g.neg(sj), g.neg(si))
+    } else {
+        (sj, si)
+    };
+    let swapped = g.substitute(psi_s, &|s| match s {
+        Sym::Sigma(k) if k == i => Some(ti),
+        Sym::Sigma(k) if k == j => Some(tj),
+        _ => None,
+    });
+    if swapped == psi_s { Some(true) } else { None }
+}
+
+/// Deterministic pseudo-random numbers (splitmix64) for numeric checks.
+pub struct Rng(u64);
+
+impl Rng {
+    /// Seeded generator.
+    pub fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        lo + (hi - lo) * ((z >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// Check that a stretch energy is symmetric under every swap of stretches.
+/// Returns whether the check was only numeric; an error names the swap.
+pub fn check_isotropy(
+    g: &mut Graph,
+    conv: &mut Converter,
+    psi_s: Id,
+    dim: u8,
+    params: &[f64],
+    span: Span,
+    no_s3: bool,
+) -> Result<bool, Error> {
+    let rf = conv.rational(g, psi_s);
+    let mut numeric_only = false;
+    let mut failing: Vec<(u8, u8)> = Vec::new();
+    for (i, j) in pairs(dim) {
+        match invariant_under(g, conv, psi_s, rf.as_ref(), i, j, false) {
+            Some(true) => {}
+            Some(false) => failing.push((i, j)),
+            None => {
+                if numerically_differs(g, psi_s, dim, params, i, j) {
+                    failing.push((i, j));
+                } else {
+                    numeric_only = true;
+                }
+            }
+        }
+    }
+    if let Some(((i, j), rest)) = failing.split_first() {
+        let name = |k: u8| format!("s{}", k + 1);
+        return Err(Error::NotIsotropic {
+            span,
+            dim,
+            a: name(*i),
+            b: name(*j),
+            others: rest.iter().map(|(a, b)| (name(*a), name(*b))).collect(),
+            no_s3,
+        });
+    }
+    Ok(numeric_only)
+}
+
+/// Ψ at random points vs Ψ with σi, σj swapped: true when they clearly differ.
+fn numerically_differs(g: &Graph, psi_s: Id, dim: u8, params: &[f64], i: u8, j: u8) -> bool {
+    let tape = Tape::new(g, &[psi_s]);
+    let mut rng = Rng::new(0x5EED_0000 + u64::from(i) * 7 + u64::from(j));
+    for _ in 0..8 {
+        let mut s: Vec<f64> = (0..dim).map(|_| rng.uniform(0.4, 2.5)).collect();
+        let a = tape.eval(&Env::new(dim, &s, params))[0];
+        s.swap(i as usize, j as usize);
+        let b = tape.eval(&Env::new(dim, &s, params))[0];
+        if a.is_finite() && b.is_finite() && (a - b).abs() > 1e-7 * (1.0 + a.abs() + b.abs()) {
+            return true;
+        }
+    }
+    false
+}
+
+/// Ψ unchanged by (σi, σj) → (−σj, −σi) for every pair, proved exactly.
+pub fn sign_symmetric(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8) -> bool {
+    let rf = conv.rational(g, psi_s);
+    pairs(dim)
+        .into_iter()
+        .all(|(i, j)| invariant_under(g, conv, psi_s, rf.as_ref(), i, j, true) == Some(true))
+}
+
+/// Whether Ψ has a log, a negative power or a fractional power of something
+/// that vanishes when one σ is 0 (i.e. on det F = 0).
+pub fn barrier(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8) -> bool {
+    let mut args: Vec<Id> = Vec::new();
+    for id in g.reachable(&[psi_s]) {
+        match g.get(id) {
+            Node::Log(x) => args.push(*x),
+            Node::Pow([b, e]) => {
+                let singular = match g.as_num(*e) {
+                    Some(r) => r < &num_rational::BigRational::zero() || !r.is_integer(),
+                    None => true,
+                };
+                if singular {
+                    args.push(*b);
+                }
+            }
+            _ => {}
+        }
+    }
+    for a in args {
+        for k in 0..dim {
+            let zero = g.zero();
+            let at = g.substitute(a, &|s| (s == Sym::Sigma(k)).then_some(zero));
+            if conv.is_zero(g, at) == Proof::Zero {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Distinct denominators (bases of negative powers) and log arguments.
+pub fn singularities(g: &Graph, roots: &[Id]) -> Vec<Id> {
+    let mut out: Vec<Id> = Vec::new();
+    for id in g.reachable(roots) {
+        let s = match g.get(id) {
+            Node::Log(x) => Some(*x),
+            Node::Pow([b, e])
+                if g.as_num(*e)
+                    .is_some_and(|r| r < &num_rational::BigRational::zero()) =>
+            {
+                Some(*b)
+            }
+            _ => None,
+        };
+        if let Some(s) = s
+            && !out.contains(&s)
+        {
+            out.push(s);
+        }
+    }
+    out
+}
