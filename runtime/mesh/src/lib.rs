@@ -8,6 +8,7 @@ pub mod generate;
 pub mod geometry;
 pub mod io;
 pub mod topology;
+pub mod tutte;
 pub mod types;
 pub mod validate;
 
@@ -20,5 +21,6 @@ pub use io::{
     parse_vtk, read_mesh, read_tet_mesh, read_tri_mesh, write_obj, write_vtk_tet, write_vtk_tri,
 };
 pub use topology::{Components, boundary_loops, components, tet_boundary_faces};
+pub use tutte::{TutteEmbedding, tutte_embedding, tutte_embedding_report};
 pub use types::{AnyMesh, TetMesh, TriMesh, TutteWeights, Validated, ValidationOptions};
 pub use validate::{validate_tet, validate_tri};

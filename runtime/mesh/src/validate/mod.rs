@@ -39,6 +39,8 @@ use crate::topology::{components, sorted_sides};
 use crate::types::{TetMesh, TriMesh, Validated, ValidationOptions};
 use common::*;
 
+pub(crate) use common::check_indices;
+
 fn check_components<const K: usize>(
     elements: &[[usize; K]],
     opts: &ValidationOptions,

@@ -1,0 +1,231 @@
+//! Tutte / Floater embedding: a bijective initial map of a disk-topology
+//! triangle mesh into the unit disk, the standard starting point of
+//! injective parameterisation (the barrier energies need a flip-free start).
+//!
+//! **Boundary.** The single boundary loop (in the direction of its
+//! triangles' edges) is mapped to the unit circle counter-clockwise by arc
+//! length: with `s_i` the 3D length of the loop up to vertex `i` and `S`
+//! the total, `u_i = (cos 2π s_i/S, sin 2π s_i/S)`.
+//!
+//! **Interior.** Each interior vertex is the weighted average of its
+//! neighbours, `Σ_j w_ij (u_i − u_j) = 0`, a sparse linear system in the
+//! interior unknowns (two right-hand sides: u and v). Symmetric weights
+//! (uniform, cotangent) are solved with a sparse Cholesky factorisation,
+//! mean-value weights with a sparse LU (faer).
+//!
+//! **Bijectivity.** With positive weights and a convex boundary polygon the
+//! map is a bijection (Tutte 1963, Floater 2003): uniform and mean-value
+//! weights always qualify; cotangent weights are negative across edges
+//! whose opposite angles sum to more than π, and the map may then fold.
+//! Because the boundary follows the triangles' orientation, a consistently
+//! oriented mesh maps to positively oriented (counter-clockwise) triangles.
+//! [`tutte_embedding`] insists on that (every signed area `> 0`);
+//! [`tutte_embedding_report`] returns the map with the list of flipped
+//! triangles instead.
+
+mod weights;
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+use crate::error::{TutteError, ValidationError};
+use crate::geometry::{norm, signed_area_uv, sub};
+use crate::topology::{boundary_loops, components};
+use crate::types::{TriMesh, TutteWeights};
+use crate::validate::check_indices;
+
+/// The result of [`tutte_embedding_report`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct TutteEmbedding {
+    /// One uv per vertex; boundary vertices lie on the unit circle.
+    pub uv: Vec<[f64; 2]>,
+    /// The boundary loop (vertex ids, counter-clockwise in uv).
+    pub boundary: Vec<usize>,
+    /// Triangles with signed uv area `≤ 0` (empty for a bijection).
+    pub flipped: Vec<usize>,
+}
+
+/// Tutte embedding of a disk-topology mesh that must be a bijection: an
+/// embedding with flipped triangles is returned inside
+/// [`TutteError::Flipped`] (nothing is lost). See the module docs.
+pub fn tutte_embedding(mesh: &TriMesh, weights: TutteWeights) -> Result<Vec<[f64; 2]>, TutteError> {
+    let e = tutte_embedding_report(mesh, weights)?;
+    match e.flipped.first() {
+        None => Ok(e.uv),
+        Some(&first) => Err(TutteError::Flipped {
+            count: e.flipped.len(),
+            first,
+            uv: e.uv,
+        }),
+    }
+}
+
+/// Tutte embedding with the list of flipped triangles (see the module docs).
+///
+/// Requirements (else a [`TutteError`]): at least one triangle, indices in
+/// range, no repeated vertex in a triangle, finite coordinates, every
+/// vertex used, one connected component, manifold edges along a single
+/// boundary loop of non-zero length, finite weights.
+pub fn tutte_embedding_report(
+    mesh: &TriMesh,
+    weights: TutteWeights,
+) -> Result<TutteEmbedding, TutteError> {
+    let tris = &mesh.triangles;
+    let pos = &mesh.positions;
+    let n = pos.len();
+    if tris.is_empty() {
+        return Err(ValidationError::NoElements.into());
+    }
+    check_indices(tris, n)?;
+    let mut used = vec![false; n];
+    for t in tris {
+        for &v in t {
+            used[v] = true;
+        }
+    }
+    if let Some(vertex) = used.iter().position(|u| !u) {
+        return Err(TutteError::UnreferencedVertex { vertex });
+    }
+    if let Some((vertex, p)) = pos
+        .iter()
+        .enumerate()
+        .find(|(_, p)| p.iter().any(|c| !c.is_finite()))
+    {
+        return Err(ValidationError::NonFiniteCoordinate {
+            vertex,
+            position: *p,
+        }
+        .into());
+    }
+    let count = components(tris).count;
+    if count > 1 {
+        return Err(TutteError::Disconnected { count });
+    }
+    let loops = boundary_loops(tris)?;
+    if loops.len() != 1 {
+        return Err(TutteError::NotADisk { loops: loops.len() });
+    }
+    let boundary = loops.into_iter().next().unwrap_or_default();
+
+    let mut uv = vec![[0.0; 2]; n];
+    place_on_circle(pos, &boundary, &mut uv)?;
+
+    // Interior numbering.
+    let mut interior = vec![usize::MAX; n];
+    let mut is_boundary = vec![false; n];
+    for &v in &boundary {
+        is_boundary[v] = true;
+    }
+    let mut m = 0;
+    for v in 0..n {
+        if !is_boundary[v] {
+            interior[v] = m;
+            m += 1;
+        }
+    }
+    if m > 0 {
+        solve_interior(mesh, weights, &interior, &mut uv, m)?;
+    }
+    let flipped = tris
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| signed_area_uv(uv[t[0]], uv[t[1]], uv[t[2]]) <= 0.0)
+        .map(|(f, _)| f)
+        .collect();
+    Ok(TutteEmbedding {
+        uv,
+        boundary,
+        flipped,
+    })
+}
+
+/// Boundary to the unit circle by arc length.
+fn place_on_circle(
+    pos: &[[f64; 3]],
+    boundary: &[usize],
+    uv: &mut [[f64; 2]],
+) -> Result<(), TutteError> {
+    let nb = boundary.len();
+    let mut s = Vec::with_capacity(nb);
+    let mut total = 0.0;
+    for i in 0..nb {
+        s.push(total);
+        total += norm(sub(pos[boundary[(i + 1) % nb]], pos[boundary[i]]));
+    }
+    if !(total > 0.0 && total.is_finite()) {
+        return Err(TutteError::DegenerateBoundary);
+    }
+    for (&v, &si) in boundary.iter().zip(&s) {
+        let a = std::f64::consts::TAU * si / total;
+        uv[v] = [a.cos(), a.sin()];
+    }
+    Ok(())
+}
+
+/// Assemble `L_II u_I = −L_IB u_B` and solve for both coordinates.
+fn solve_interior(
+    mesh: &TriMesh,
+    weights: TutteWeights,
+    interior: &[usize],
+    uv: &mut [[f64; 2]],
+    m: usize,
+) -> Result<(), TutteError> {
+    let mut contrib = Vec::with_capacity(mesh.triangles.len() * 6);
+    for t in &mesh.triangles {
+        let p = t.map(|v| mesh.positions[v]);
+        weights::triangle_contributions(weights, *t, p, &mut contrib)
+            .map_err(|edge| TutteError::BadWeight { weights, edge })?;
+    }
+    let mut triplets = Vec::with_capacity(contrib.len() * 2);
+    let mut rhs = Mat::<f64>::zeros(m, 2);
+    for &(i, j, w) in &contrib {
+        let r = interior[i];
+        if r == usize::MAX {
+            continue; // boundary rows are fixed
+        }
+        triplets.push(Triplet::new(r, r, w));
+        let c = interior[j];
+        if c == usize::MAX {
+            rhs[(r, 0)] += w * uv[j][0];
+            rhs[(r, 1)] += w * uv[j][1];
+        } else {
+            triplets.push(Triplet::new(r, c, -w));
+        }
+    }
+    let a = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &triplets).map_err(|e| {
+        TutteError::Solve {
+            message: format!("building the sparse matrix: {e:?}"),
+        }
+    })?;
+    let symmetric = matches!(weights, TutteWeights::Uniform | TutteWeights::Cotangent);
+    let solved = if symmetric {
+        match a.sp_cholesky(Side::Lower) {
+            Ok(llt) => {
+                llt.solve_in_place(rhs.as_mut());
+                true
+            }
+            Err(_) => false, // not positive definite (cotangent): use LU
+        }
+    } else {
+        false
+    };
+    if !solved {
+        let lu = a.sp_lu().map_err(|e| TutteError::Solve {
+            message: format!("sparse LU: {e}"),
+        })?;
+        lu.solve_in_place(rhs.as_mut());
+    }
+    for (v, &r) in interior.iter().enumerate() {
+        if r != usize::MAX {
+            let (x, y) = (rhs[(r, 0)], rhs[(r, 1)]);
+            if !(x.is_finite() && y.is_finite()) {
+                return Err(TutteError::Solve {
+                    message: format!("the solution at vertex {v} is not finite (singular system)"),
+                });
+            }
+            uv[v] = [x, y];
+        }
+    }
+    Ok(())
+}
