@@ -63,3 +63,31 @@ impl Filter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Filter;
+
+    #[test]
+    fn values_and_non_finite_handling() {
+        assert_eq!(Filter::default(), Filter::Clamp);
+        assert_eq!(Filter::None.apply(-2.0), -2.0);
+        assert!(Filter::None.apply(f64::NAN).is_nan());
+        assert_eq!(Filter::None.apply(f64::NEG_INFINITY), f64::NEG_INFINITY);
+        assert_eq!(Filter::Clamp.apply(-2.0), 0.0);
+        assert_eq!(Filter::Clamp.apply(3.0), 3.0);
+        assert_eq!(Filter::ClampEps(0.5).apply(0.1), 0.5);
+        assert_eq!(Filter::ClampEps(0.5).apply(3.0), 3.0);
+        assert_eq!(Filter::Abs.apply(-2.0), 2.0);
+        for f in [Filter::Clamp, Filter::ClampEps(1e-3), Filter::Abs] {
+            for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                assert_eq!(f.apply(x), f.floor(), "{f:?} on {x}");
+            }
+        }
+        assert_eq!(Filter::ClampEps(1e-3).floor(), 1e-3);
+        // A meaningless ε falls back to the plain clamp.
+        assert_eq!(Filter::ClampEps(-1.0).apply(-5.0), 0.0);
+        assert_eq!(Filter::ClampEps(f64::NAN).apply(-5.0), 0.0);
+        assert_eq!(Filter::ClampEps(f64::INFINITY).apply(-5.0), 0.0);
+    }
+}

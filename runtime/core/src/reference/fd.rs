@@ -1,5 +1,8 @@
 //! Central differences with an automatically chosen step.
 //!
+//! For Ψ(F) the length scale is ‖F‖, reduced to σ_min for barrier energies
+//! (`info().barrier`) so no step crosses det F = 0.
+//!
 //! A fixed step cannot suit every point (Symmetric Dirichlet at σ = 10⁻⁶ needs
 //! h ≪ 10⁻⁶, while a polynomial energy there needs h ≈ 10⁻⁴ to beat rounding),
 //! so every derivative is estimated on a ladder of steps h_k = 0.1·s·2^{−k}
@@ -7,18 +10,35 @@
 //! extrapolation R_k = (4D(h_k/2) − D(h_k))/3 (error O(h⁴)). The returned value
 //! is the R_k with the smallest disagreement |R_k − R_{k+1}|, i.e. where
 //! truncation and rounding error balance; estimates that hit a non-finite Ψ
-//! (e.g. a step crossing a barrier) are skipped. Typical accuracy: ≈10⁻¹⁰
+//! (e.g. a step crossing a barrier) are skipped; each error estimate includes
+//! a rounding-noise model (see `ladder`). Typical accuracy: ≈10⁻¹⁰
 //! relative for gradients, ≈10⁻⁷ for Hessians, on smooth energies.
 
 use super::psi_f;
 use crate::energy::Energy;
+use crate::svd::signed_svd;
 use nalgebra::{DMatrix, Matrix4, SMatrix, SVector, Vector4};
 
 /// Number of steps on the ladder (the smallest is 0.1·s·2^-LADDER ≈ 10⁻⁹·s).
 pub const LADDER: usize = 27;
 
-/// Pick the best Richardson estimate from a ladder of central estimates `est(h)`.
-fn ladder(scale: f64, mut est: impl FnMut(f64) -> f64) -> f64 {
+/// Pick the best Richardson estimate from a ladder of central estimates `est(h)`
+/// of a derivative of the given `order` (1 or 2). The error of step k is
+/// estimated as the Richardson disagreement plus a rounding-noise model
+/// 8ε·(max(fscale, 1)/h^order + |R_k|·xscale/h): the first term is the
+/// rounding of Ψ itself (the floor 1 stands for the intermediate terms of an
+/// energy that happens to vanish at x, e.g. ARAP's I2 − 2I1 + d at rest), the
+/// second the quantisation of the perturbed input (entries of size `xscale`
+/// carry an absolute error ≈ ε·xscale, which dominates for ill-conditioned F
+/// such as σ_min = 10⁻⁶ ≪ ‖F‖). Without it, steps so small that differences
+/// round to 0 or to a quantised plateau would look perfectly converged.
+fn ladder(
+    scale: f64,
+    xscale: f64,
+    order: i32,
+    fscale: f64,
+    mut est: impl FnMut(f64) -> f64,
+) -> f64 {
     let mut d: [f64; LADDER + 2] = [f64::NAN; LADDER + 2];
     let h0 = 0.1 * scale;
     for (k, dk) in d.iter_mut().enumerate() {
@@ -30,7 +50,9 @@ fn ladder(scale: f64, mut est: impl FnMut(f64) -> f64) -> f64 {
     let mut best = f64::NAN;
     let mut best_err = f64::INFINITY;
     for k in 0..LADDER {
-        let err = (r[k] - r[k + 1]).abs();
+        let h = h0 * 0.5f64.powi(k as i32 + 2);
+        let noise = fscale.max(1.0) / h.powi(order) + r[k + 1].abs() * xscale / h;
+        let err = (r[k] - r[k + 1]).abs() + 8.0 * f64::EPSILON * noise;
         if r[k].is_finite() && r[k + 1].is_finite() && err < best_err {
             best_err = err;
             best = r[k + 1];
@@ -46,8 +68,10 @@ pub fn fd_gradient<const N: usize>(
     x: &SVector<f64, N>,
     scale: f64,
 ) -> SVector<f64, N> {
+    let fscale = f(x).abs();
+    let xscale = x.amax();
     SVector::from_fn(|i, _| {
-        ladder(scale, |h| {
+        ladder(scale, xscale, 1, fscale, |h| {
             let mut xp = *x;
             let mut xm = *x;
             xp[i] += h;
@@ -65,10 +89,11 @@ pub fn fd_hessian<const N: usize>(
     scale: f64,
 ) -> SMatrix<f64, N, N> {
     let f0 = f(x);
+    let xscale = x.amax();
     let mut h = SMatrix::<f64, N, N>::zeros();
     for i in 0..N {
         for j in i..N {
-            let v = ladder(scale, |s| {
+            let v = ladder(scale, xscale, 2, f0.abs(), |s| {
                 let at = |di: f64, dj: f64| {
                     let mut y = *x;
                     y[i] += di;
@@ -96,9 +121,20 @@ fn mat_of<const D: usize, const N: usize>(x: &SVector<f64, N>) -> SMatrix<f64, D
     SMatrix::from_fn(|r, c| x[c * D + r])
 }
 
-fn scale_of<const D: usize>(f: &SMatrix<f64, D, D>) -> f64 {
+/// Step scale for differences of Ψ(F): ‖F‖, or for barrier energies the
+/// distance σ_min to the nearest singular matrix when smaller (steps must not
+/// jump across det F = 0, where such energies are singular and, being even in
+/// σ_min, would give smooth but meaningless differences).
+fn scale_of<E: Energy<D> + ?Sized, const D: usize>(e: &E, f: &SMatrix<f64, D, D>) -> f64 {
     let n = f.norm();
-    if n > 0.0 { n } else { 1.0 }
+    let n = if n > 0.0 && n.is_finite() { n } else { 1.0 };
+    if e.info().barrier {
+        let smin = signed_svd(f).sigma[D - 1].abs();
+        if smin > 0.0 && smin < n {
+            return smin;
+        }
+    }
+    n
 }
 
 /// ∂Ψ/∂F (as a matrix) by central differences of Ψ(F), for D = 2 or 3.
@@ -106,9 +142,11 @@ pub fn fd_gradient_f<E: Energy<D> + ?Sized, const D: usize>(
     e: &E,
     f: &SMatrix<f64, D, D>,
 ) -> SMatrix<f64, D, D> {
-    let s = scale_of(f);
+    let s = scale_of(e, f);
+    let fscale = psi_f(e, f).abs();
+    let xscale = f.amax();
     SMatrix::from_fn(|r, c| {
-        ladder(s, |h| {
+        ladder(s, xscale, 1, fscale, |h| {
             let mut fp = *f;
             let mut fm = *f;
             fp[(r, c)] += h;
@@ -125,11 +163,11 @@ pub fn fd_hessian_f<E: Energy<D> + ?Sized, const D: usize>(
 ) -> DMatrix<f64> {
     if D == 2 {
         let x: SVector<f64, 4> = vec_of(f);
-        let h = fd_hessian(|y| psi_f(e, &mat_of::<D, 4>(y)), &x, scale_of(f));
+        let h = fd_hessian(|y| psi_f(e, &mat_of::<D, 4>(y)), &x, scale_of(e, f));
         DMatrix::from_fn(4, 4, |i, j| h[(i, j)])
     } else {
         let x: SVector<f64, 9> = vec_of(f);
-        let h = fd_hessian(|y| psi_f(e, &mat_of::<D, 9>(y)), &x, scale_of(f));
+        let h = fd_hessian(|y| psi_f(e, &mat_of::<D, 9>(y)), &x, scale_of(e, f));
         DMatrix::from_fn(9, 9, |i, j| h[(i, j)])
     }
 }
@@ -147,11 +185,11 @@ pub fn fd_gradient_f3<E: Energy<3> + ?Sized>(e: &E, f: &SMatrix<f64, 3, 3>) -> S
 /// ∂²Ψ/∂f² in 2D by central differences.
 pub fn fd_hessian_f2<E: Energy<2> + ?Sized>(e: &E, f: &SMatrix<f64, 2, 2>) -> Matrix4<f64> {
     let x: SVector<f64, 4> = vec_of(f);
-    fd_hessian(|y| psi_f(e, &mat_of::<2, 4>(y)), &x, scale_of(f))
+    fd_hessian(|y| psi_f(e, &mat_of::<2, 4>(y)), &x, scale_of(e, f))
 }
 
 /// ∂²Ψ/∂f² in 3D by central differences.
 pub fn fd_hessian_f3<E: Energy<3> + ?Sized>(e: &E, f: &SMatrix<f64, 3, 3>) -> SMatrix<f64, 9, 9> {
     let x: SVector<f64, 9> = vec_of(f);
-    fd_hessian(|y| psi_f(e, &mat_of::<3, 9>(y)), &x, scale_of(f))
+    fd_hessian(|y| psi_f(e, &mat_of::<3, 9>(y)), &x, scale_of(e, f))
 }

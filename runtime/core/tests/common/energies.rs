@@ -2,7 +2,7 @@
 //! (`spectral_from_invariants`, `spectral_from_stretch`). Their derivatives are
 //! written out by hand here, independently of the runtime's hand-written energies.
 
-use ecc_runtime::{Energy, Spectral, spectral_from_invariants, spectral_from_stretch};
+use ecc_runtime::{Energy, EnergyInfo, Spectral, spectral_from_invariants, spectral_from_stretch};
 
 fn inv3(s: &[f64; 3]) -> (f64, f64, f64) {
     (
@@ -20,6 +20,12 @@ pub struct Mips2;
 impl Energy<2> for Mips2 {
     fn name(&self) -> &str {
         "mips2d (invariants)"
+    }
+    fn info(&self) -> EnergyInfo {
+        EnergyInfo {
+            barrier: true,
+            svd_free_psi: false,
+        }
     }
     fn psi(&self, s: &[f64; 2]) -> f64 {
         let (_, i2, i3) = inv2(s);
@@ -93,6 +99,12 @@ impl Energy<2> for Sd2Inv {
     fn name(&self) -> &str {
         "sd2d (invariants)"
     }
+    fn info(&self) -> EnergyInfo {
+        EnergyInfo {
+            barrier: true,
+            svd_free_psi: false,
+        }
+    }
     fn psi(&self, s: &[f64; 2]) -> f64 {
         let (_, i2, i3) = inv2(s);
         if i3 == 0.0 {
@@ -128,6 +140,12 @@ pub struct Sd3Inv {
 impl Energy<3> for Sd3Inv {
     fn name(&self) -> &str {
         "sd3d (invariants, eq. 32)"
+    }
+    fn info(&self) -> EnergyInfo {
+        EnergyInfo {
+            barrier: true,
+            svd_free_psi: false,
+        }
     }
     fn psi(&self, s: &[f64; 3]) -> f64 {
         let (i1, i2, i3) = inv3(s);
@@ -190,6 +208,12 @@ impl Energy<2> for Hencky {
     fn name(&self) -> &str {
         "hencky (stretch)"
     }
+    fn info(&self) -> EnergyInfo {
+        EnergyInfo {
+            barrier: true,
+            svd_free_psi: false,
+        }
+    }
     fn psi(&self, s: &[f64; 2]) -> f64 {
         hencky(s).psi
     }
@@ -200,6 +224,12 @@ impl Energy<2> for Hencky {
 impl Energy<3> for Hencky {
     fn name(&self) -> &str {
         "hencky (stretch)"
+    }
+    fn info(&self) -> EnergyInfo {
+        EnergyInfo {
+            barrier: true,
+            svd_free_psi: false,
+        }
     }
     fn psi(&self, s: &[f64; 3]) -> f64 {
         hencky(s).psi
