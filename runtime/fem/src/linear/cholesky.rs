@@ -1,0 +1,218 @@
+//! Sparse Cholesky (LLᵀ) with faer's low-level API.
+//!
+//! [`CholeskyFactor::analyze`] runs the symbolic analysis once per pattern
+//! (AMD fill-reducing ordering, elimination tree, simplicial or supernodal
+//! structure chosen by faer from the flop ratio). Each Newton step then calls
+//! [`CholeskyFactor::factorize`], which writes the numeric factor into the
+//! preallocated `l_values` using a preallocated scratch buffer, and
+//! [`CholeskyFactor::solve_in_place`]. The counters let tests assert that the
+//! symbolic analysis really is reused.
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::cholesky::llt::factor::LltError;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+use crate::error::FemError;
+use crate::pattern::Pattern;
+
+/// The numeric factorisation hit a non-positive pivot (matrix not numerically PD).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NotPositiveDefinite {
+    /// Column (in the permuted order) where it failed.
+    pub pivot: usize,
+}
+
+/// Symbolic structure, factor values and scratch for one pattern.
+pub struct CholeskyFactor {
+    symbolic: SymbolicCholesky<usize>,
+    l_values: Vec<f64>,
+    mem: MemBuffer,
+    par: Par,
+    factored: bool,
+    symbolic_analyses: usize,
+    numeric_factorizations: usize,
+}
+
+impl CholeskyFactor {
+    /// Symbolic analysis of the upper-triangular pattern; allocates the factor
+    /// storage and all scratch once.
+    pub fn analyze(pattern: &Pattern) -> Result<Self, FemError> {
+        let n = pattern.n();
+        // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
+        let a =
+            SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
+        let symbolic = factorize_symbolic_cholesky(
+            a,
+            Side::Upper,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+        .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
+        let par = Par::rayon(0);
+        let req = StackReq::any_of(&[
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, par),
+        ]);
+        let mem = MemBuffer::try_new(req)
+            .map_err(|_| FemError::Symbolic("out of memory for scratch".into()))?;
+        let len = symbolic.len_val();
+        let mut l_values = Vec::new();
+        l_values.try_reserve_exact(len).map_err(|_| {
+            FemError::Symbolic(format!("out of memory for a factor of {len} values"))
+        })?;
+        l_values.resize(len, 0.0);
+        Ok(CholeskyFactor {
+            symbolic,
+            l_values,
+            mem,
+            par,
+            factored: false,
+            symbolic_analyses: 1,
+            numeric_factorizations: 0,
+        })
+    }
+
+    /// Number of stored values of L.
+    pub fn factor_nnz(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// Memory taken by the factor values, in bytes.
+    pub fn factor_bytes(&self) -> usize {
+        self.factor_nnz() * std::mem::size_of::<f64>()
+    }
+
+    /// Whether faer chose the supernodal variant.
+    pub fn is_supernodal(&self) -> bool {
+        matches!(
+            self.symbolic.raw(),
+            faer::sparse::linalg::cholesky::SymbolicCholeskyRaw::Supernodal(_)
+        )
+    }
+
+    /// How many symbolic analyses this factor has done (always 1: it is never redone).
+    pub fn symbolic_analyses(&self) -> usize {
+        self.symbolic_analyses
+    }
+
+    /// How many numeric factorisations were attempted.
+    pub fn numeric_factorizations(&self) -> usize {
+        self.numeric_factorizations
+    }
+
+    /// Numeric LLᵀ of the matrix with this pattern and upper-triangular `values`.
+    pub fn factorize(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+    ) -> Result<(), NotPositiveDefinite> {
+        let n = pattern.n();
+        self.numeric_factorizations += 1;
+        self.factored = false;
+        // SAFETY: the same pattern was validated by `new_checked` in `analyze`.
+        let sym = unsafe {
+            SymbolicSparseColMatRef::new_unchecked(n, n, pattern.col_ptr(), None, pattern.row_idx())
+        };
+        let a = SparseColMatRef::new(sym, values);
+        let stack = MemStack::new(&mut self.mem);
+        match self.symbolic.factorize_numeric_llt::<f64>(
+            &mut self.l_values,
+            a,
+            Side::Upper,
+            Default::default(),
+            self.par,
+            stack,
+            Default::default(),
+        ) {
+            Ok(_) => {
+                self.factored = true;
+                Ok(())
+            }
+            Err(LltError::NonPositivePivot { index }) => Err(NotPositiveDefinite { pivot: index }),
+        }
+    }
+
+    /// Solve A x = rhs in place with the last successful factorisation.
+    /// Returns `false` (leaving `rhs` untouched) if there is none.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> bool {
+        if !self.factored {
+            return false;
+        }
+        let n = rhs.len();
+        let llt = LltRef::<'_, usize, f64>::new(&self.symbolic, &self.l_values);
+        let stack = MemStack::new(&mut self.mem);
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(rhs, n, 1),
+            self.par,
+            stack,
+        );
+        true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dofs::DofMap;
+    use crate::pattern::{StencilSet, build};
+
+    /// Path graph 0-1-2-…: 1D Laplacian + I, tridiagonal, SPD.
+    fn path(n: usize) -> (Pattern, Vec<f64>) {
+        let edges: Vec<usize> = (0..n - 1).flat_map(|i| [i, i + 1]).collect();
+        let dofs = DofMap::all_free(n, 1).unwrap();
+        let (p, _) = build(
+            &[StencilSet {
+                name: "e",
+                arity: 2,
+                stencils: &edges,
+            }],
+            &dofs,
+        )
+        .unwrap();
+        let mut v = vec![0.0; p.nnz()];
+        for j in 0..n {
+            v[p.diag_slot(j)] = 3.0;
+            if j > 0 {
+                v[p.slot(j - 1, j).unwrap()] = -1.0;
+            }
+        }
+        (p, v)
+    }
+
+    #[test]
+    fn solves_and_reuses_symbolic() {
+        let n = 50;
+        let (p, v) = path(n);
+        let mut f = CholeskyFactor::analyze(&p).unwrap();
+        let xs: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
+        let mut b = vec![0.0; n];
+        for step in 0..3 {
+            let scaled: Vec<f64> = v.iter().map(|a| a * (1.0 + step as f64)).collect();
+            p.sym_matvec(&scaled, &xs, &mut b);
+            f.factorize(&p, &scaled).unwrap();
+            assert!(f.solve_in_place(&mut b));
+            for (a, e) in b.iter().zip(&xs) {
+                assert!((a - e).abs() < 1e-12);
+            }
+        }
+        assert_eq!(f.symbolic_analyses(), 1);
+        assert_eq!(f.numeric_factorizations(), 3);
+    }
+
+    #[test]
+    fn indefinite_is_reported() {
+        let (p, mut v) = path(10);
+        v[p.diag_slot(4)] = -5.0;
+        let mut f = CholeskyFactor::analyze(&p).unwrap();
+        assert!(f.factorize(&p, &v).is_err());
+        let mut b = vec![1.0; 10];
+        assert!(!f.solve_in_place(&mut b));
+        assert_eq!(b, vec![1.0; 10]);
+    }
+}

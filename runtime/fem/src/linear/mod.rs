@@ -1,0 +1,293 @@
+//! The Newton linear system H d = −g: direct (faer sparse Cholesky) or
+//! iterative (Jacobi PCG), with a diagonal shift for singular Hessians.
+//!
+//! **Null space.** With no fixed DOFs (parameterisation) the Hessian of any
+//! translation-invariant objective is singular: H·(1,…,1 per coordinate) = 0,
+//! and after PSD filtering the projected Hessian may have further zero
+//! eigenvalues. We factor H + δI instead. δ starts at `base_shift` (relative
+//! to the mean diagonal, so it is unit-free; the solver uses a tiny value such
+//! as 1e-10 when nothing is fixed and 0 otherwise) and, whenever the
+//! numeric factorisation meets a non-positive pivot, is raised to
+//! max(100·δ, 1e-10·mean diag) and the factorisation retried (at most
+//! `max_attempts` times). Because g is orthogonal to the translation modes
+//! (up to rounding), the shift changes the step only by O(δ/λ_min) in the
+//! remaining directions and never creates a large null-space component.
+//! The same shifted values feed PCG.
+
+pub mod cholesky;
+pub mod pcg;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::FemError;
+use crate::pattern::Pattern;
+use cholesky::CholeskyFactor;
+use pcg::{Pcg, PcgInfo};
+
+/// Which linear solver the Newton iteration uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum LinearSolver {
+    /// Cholesky when its factor fits in `max_factor_bytes`, PCG otherwise
+    /// (decided from the symbolic analysis, done once per pattern).
+    #[default]
+    Auto,
+    /// Sparse Cholesky (faer), symbolic once, numeric every step.
+    Cholesky,
+    /// Jacobi-preconditioned conjugate gradients (inexact Newton).
+    Pcg,
+}
+
+/// How a linear system was prepared for this Newton step.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PrepareInfo {
+    /// Absolute diagonal shift δ actually used.
+    pub shift: f64,
+    /// Numeric factorisations attempted (0 for PCG).
+    pub factorizations: usize,
+}
+
+/// The factorisation failed even with the largest shift.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FactorizationFailed {
+    /// The last shift tried.
+    pub shift: f64,
+}
+
+/// Outcome of one solve.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolveInfo {
+    /// CG iterations (0 for Cholesky).
+    pub iterations: usize,
+    /// ‖H d + g‖ / ‖g‖ as reported by PCG (0 for Cholesky).
+    pub relative_residual: f64,
+}
+
+enum Backend {
+    Cholesky(Box<CholeskyFactor>),
+    Pcg(Box<Pcg>),
+}
+
+/// The Newton system for one pattern: backend state reused across iterations.
+pub struct LinearSystem {
+    backend: Backend,
+    /// The symbolic analysis done to decide `Auto` (kept, for its counters).
+    analyzed_bytes: Option<usize>,
+}
+
+impl LinearSystem {
+    /// Choose and set up the backend. `Auto` runs the symbolic analysis and
+    /// keeps Cholesky if L takes at most `max_factor_bytes`.
+    pub fn new(
+        pattern: &Pattern,
+        choice: LinearSolver,
+        max_factor_bytes: usize,
+    ) -> Result<Self, FemError> {
+        let backend = match choice {
+            LinearSolver::Pcg => Backend::Pcg(Box::new(Pcg::new(pattern))),
+            LinearSolver::Cholesky => {
+                Backend::Cholesky(Box::new(CholeskyFactor::analyze(pattern)?))
+            }
+            LinearSolver::Auto => match CholeskyFactor::analyze(pattern) {
+                Ok(f) if f.factor_bytes() <= max_factor_bytes => Backend::Cholesky(Box::new(f)),
+                Ok(f) => {
+                    let bytes = f.factor_bytes();
+                    drop(f);
+                    return Ok(LinearSystem {
+                        backend: Backend::Pcg(Box::new(Pcg::new(pattern))),
+                        analyzed_bytes: Some(bytes),
+                    });
+                }
+                // out of memory or index overflow in the analysis: the factor would not fit either
+                Err(_) => Backend::Pcg(Box::new(Pcg::new(pattern))),
+            },
+        };
+        let analyzed_bytes = match &backend {
+            Backend::Cholesky(f) => Some(f.factor_bytes()),
+            Backend::Pcg(_) => None,
+        };
+        Ok(LinearSystem {
+            backend,
+            analyzed_bytes,
+        })
+    }
+
+    /// The backend in use (`Cholesky` or `Pcg`, never `Auto`).
+    pub fn kind(&self) -> LinearSolver {
+        match self.backend {
+            Backend::Cholesky(_) => LinearSolver::Cholesky,
+            Backend::Pcg(_) => LinearSolver::Pcg,
+        }
+    }
+
+    /// Bytes of the Cholesky factor, if a symbolic analysis was done.
+    pub fn factor_bytes(&self) -> Option<usize> {
+        self.analyzed_bytes
+    }
+
+    /// The Cholesky factor (for its counters), if that is the backend.
+    pub fn cholesky(&self) -> Option<&CholeskyFactor> {
+        match &self.backend {
+            Backend::Cholesky(f) => Some(f),
+            Backend::Pcg(_) => None,
+        }
+    }
+
+    /// Shift the diagonal of `values` (H → H + δI) and, for Cholesky, factor,
+    /// raising δ on failure (see the module docs). On return `values` holds
+    /// the matrix that was factored / will be used by PCG.
+    pub fn prepare(
+        &mut self,
+        pattern: &Pattern,
+        values: &mut [f64],
+        base_shift: f64,
+        max_attempts: usize,
+    ) -> Result<PrepareInfo, FactorizationFailed> {
+        let n = pattern.n();
+        if n == 0 {
+            return Ok(PrepareInfo::default());
+        }
+        let mean_diag = {
+            let s: f64 = (0..n)
+                .map(|j| values[pattern.diag_slot(j)].abs())
+                .sum::<f64>()
+                / n as f64;
+            if s > 0.0 && s.is_finite() { s } else { 1.0 }
+        };
+        let mut shift = base_shift.max(0.0) * mean_diag;
+        let mut applied = 0.0;
+        let apply = |values: &mut [f64], target: f64, applied: &mut f64| {
+            let delta = target - *applied;
+            if delta != 0.0 {
+                for j in 0..n {
+                    values[pattern.diag_slot(j)] += delta;
+                }
+            }
+            *applied = target;
+        };
+        match &mut self.backend {
+            Backend::Pcg(_) => {
+                apply(values, shift, &mut applied);
+                Ok(PrepareInfo {
+                    shift,
+                    factorizations: 0,
+                })
+            }
+            Backend::Cholesky(f) => {
+                for attempt in 1..=max_attempts.max(1) {
+                    apply(values, shift, &mut applied);
+                    if f.factorize(pattern, values).is_ok() {
+                        return Ok(PrepareInfo {
+                            shift,
+                            factorizations: attempt,
+                        });
+                    }
+                    shift = (100.0 * shift).max(1e-10 * mean_diag);
+                }
+                Err(FactorizationFailed { shift: applied })
+            }
+        }
+    }
+
+    /// Solve (H + δI) d = rhs into `out`. `rel_tol`/`max_iters` only matter for PCG.
+    pub fn solve(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        rhs: &[f64],
+        out: &mut [f64],
+        rel_tol: f64,
+        max_iters: usize,
+    ) -> SolveInfo {
+        match &mut self.backend {
+            Backend::Cholesky(f) => {
+                out.copy_from_slice(rhs);
+                if !f.solve_in_place(out) {
+                    out.fill(f64::NAN);
+                }
+                SolveInfo::default()
+            }
+            Backend::Pcg(p) => {
+                let PcgInfo {
+                    iterations,
+                    relative_residual,
+                    ..
+                } = p.solve(pattern, values, rhs, out, rel_tol, max_iters);
+                SolveInfo {
+                    iterations,
+                    relative_residual,
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dofs::DofMap;
+    use crate::pattern::{StencilSet, build};
+
+    /// Pure graph Laplacian of a path: singular (constant null vector).
+    fn laplacian(n: usize) -> (Pattern, Vec<f64>) {
+        let edges: Vec<usize> = (0..n - 1).flat_map(|i| [i, i + 1]).collect();
+        let dofs = DofMap::all_free(n, 1).unwrap();
+        let (p, _) = build(
+            &[StencilSet {
+                name: "e",
+                arity: 2,
+                stencils: &edges,
+            }],
+            &dofs,
+        )
+        .unwrap();
+        let mut v = vec![0.0; p.nnz()];
+        for e in edges.chunks(2) {
+            v[p.diag_slot(e[0])] += 1.0;
+            v[p.diag_slot(e[1])] += 1.0;
+            v[p.slot(e[0], e[1]).unwrap()] -= 1.0;
+        }
+        (p, v)
+    }
+
+    #[test]
+    fn singular_laplacian_is_solved_with_a_shift() {
+        let n = 40;
+        let (p, v) = laplacian(n);
+        // right-hand side orthogonal to the constant null vector
+        let b: Vec<f64> = (0..n)
+            .map(|i| (i as f64 - (n as f64 - 1.0) / 2.0) / n as f64)
+            .collect();
+        for kind in [
+            LinearSolver::Cholesky,
+            LinearSolver::Pcg,
+            LinearSolver::Auto,
+        ] {
+            let mut sys = LinearSystem::new(&p, kind, usize::MAX).unwrap();
+            let mut vals = v.clone();
+            let info = sys.prepare(&p, &mut vals, 0.0, 12).unwrap();
+            let mut x = vec![0.0; n];
+            sys.solve(&p, &vals, &b, &mut x, 1e-12, 10 * n);
+            let mut hx = vec![0.0; n];
+            p.sym_matvec(&v, &x, &mut hx);
+            let err = hx
+                .iter()
+                .zip(&b)
+                .map(|(a, c)| (a - c).abs())
+                .fold(0.0, f64::max);
+            assert!(err < 1e-6, "{kind:?}: residual {err}, shift {}", info.shift);
+            if sys.kind() == LinearSolver::Cholesky {
+                assert!(info.factorizations >= 1);
+            }
+        }
+    }
+
+    #[test]
+    fn auto_falls_back_to_pcg_when_the_factor_is_too_big() {
+        let (p, _) = laplacian(20);
+        let sys = LinearSystem::new(&p, LinearSolver::Auto, 8).unwrap();
+        assert_eq!(sys.kind(), LinearSolver::Pcg);
+        assert!(sys.factor_bytes().unwrap() > 8);
+        let sys = LinearSystem::new(&p, LinearSolver::Auto, usize::MAX).unwrap();
+        assert_eq!(sys.kind(), LinearSolver::Cholesky);
+    }
+}

@@ -1,0 +1,111 @@
+//! Backtracking Armijo line search that tolerates `+∞`.
+//!
+//! From α₀ (1, or `barrier_safety`·α_max for barrier objectives) try
+//! α₀, βα₀, β²α₀, … and accept the first α with
+//!
+//!   E(x + α d) ≤ E(x) + c₁ α ∇Eᵀd.
+//!
+//! `+∞` (an element left its domain) and NaN simply fail the test ("step too
+//! long"). Near convergence the predicted decrease c₁α|∇Eᵀd| can fall below
+//! the rounding level of E itself (≈ 1e3·ε·|E| for sums over many
+//! elements); the test is then meaningless, so if even α₀·|∇Eᵀd| is below
+//! that level and E(x + α₀d) is within it of E(x), the step α₀ is accepted
+//! and flagged `noise_limited`: the gradient-norm test, not the energy,
+//! decides convergence from there.
+
+/// Accepted step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Accepted {
+    pub alpha: f64,
+    pub energy: f64,
+    pub evals: usize,
+    pub noise_limited: bool,
+}
+
+/// Line-search constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Armijo {
+    pub c1: f64,
+    pub beta: f64,
+    pub min_step: f64,
+}
+
+/// Run the search. `energy_at(α)` evaluates E(x + α d). `slope` = ∇Eᵀd < 0.
+/// On failure returns the last α tried.
+pub(crate) fn backtrack(
+    e0: f64,
+    slope: f64,
+    alpha0: f64,
+    c: Armijo,
+    mut energy_at: impl FnMut(f64) -> f64,
+) -> Result<Accepted, f64> {
+    let noise = 1e3 * f64::EPSILON * e0.abs().max(f64::MIN_POSITIVE);
+    let mut alpha = alpha0;
+    let mut evals = 0;
+    while alpha >= c.min_step {
+        let e = energy_at(alpha);
+        evals += 1;
+        if e.is_finite() && e <= e0 + c.c1 * alpha * slope {
+            return Ok(Accepted {
+                alpha,
+                energy: e,
+                evals,
+                noise_limited: false,
+            });
+        }
+        if evals == 1 && e.is_finite() && (alpha * slope).abs() <= noise && (e - e0).abs() <= noise
+        {
+            return Ok(Accepted {
+                alpha,
+                energy: e,
+                evals,
+                noise_limited: true,
+            });
+        }
+        alpha *= c.beta;
+    }
+    Err(alpha / c.beta)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const C: Armijo = Armijo {
+        c1: 1e-4,
+        beta: 0.5,
+        min_step: 1e-12,
+    };
+
+    #[test]
+    fn quadratic_takes_the_full_step() {
+        // E(α) = (1 − α)², slope −2
+        let r = backtrack(1.0, -2.0, 1.0, C, |a| (1.0 - a) * (1.0 - a)).unwrap();
+        assert_eq!(r.alpha, 1.0);
+        assert_eq!(r.evals, 1);
+    }
+
+    #[test]
+    fn infinity_means_too_long() {
+        // barrier at α = 0.3: E = −log(0.3 − α) shifted, +∞ beyond
+        let f = |a: f64| if a >= 0.3 { f64::INFINITY } else { 1.0 - a };
+        let r = backtrack(1.0, -1.0, 1.0, C, f).unwrap();
+        assert_eq!(r.alpha, 0.25);
+        assert_eq!(r.evals, 3);
+    }
+
+    #[test]
+    fn failure_reports_the_last_step() {
+        let r = backtrack(1.0, -1.0, 1.0, C, |_| 2.0);
+        assert!(matches!(r, Err(a) if a < 1e-11));
+    }
+
+    #[test]
+    fn rounding_level_steps_are_accepted_and_flagged() {
+        let e0 = 2.0;
+        let r = backtrack(e0, -1e-20, 1.0, C, |_| e0 + 1e-14).unwrap();
+        assert!(r.noise_limited);
+        // a real increase is not noise
+        assert!(backtrack(e0, -1e-20, 1.0, C, |_| e0 + 1e-6).is_err());
+    }
+}

@@ -1,0 +1,78 @@
+//! Solver parameters.
+
+use ecc_runtime::filter::Filter;
+
+use crate::linear::LinearSolver;
+
+/// Parameters of the projected Newton solver. `Default` gives the paper's
+/// setting: stop on ‖∇E‖∞ ≤ 1e-4, clamp filter, Cholesky when it fits.
+#[derive(Clone, Debug)]
+pub struct NewtonParams {
+    /// Stop when ‖∇E‖∞ over the free DOFs is ≤ this (in units of the scaled
+    /// objective, see `energy_scale`). Smith et al. 2019 use 1e-4.
+    pub tol_abs: f64,
+    /// Also stop when ‖∇E‖∞ ≤ `tol_rel`·‖∇E(x₀)‖∞ (0 disables).
+    pub tol_rel: f64,
+    /// Maximum number of Newton steps.
+    pub max_iters: usize,
+    /// Eigenvalue filter for the element Hessians (clamp by default).
+    pub filter: Filter,
+    /// Choose the filter per iteration from the trust-region ratio of the
+    /// previous step (Chen et al. 2024); overrides `filter`. See
+    /// [`crate::newton`] for the exact rule.
+    pub adaptive_filter: bool,
+    /// Adaptive rule threshold: clamp iff |ρ − 1| < this (Chen et al.: 0.01).
+    pub adaptive_threshold: f64,
+    /// Linear solver; `Auto` chooses from the symbolic factor size.
+    pub linear_solver: LinearSolver,
+    /// `Auto` uses Cholesky only if L needs at most this many bytes.
+    pub max_factor_bytes: usize,
+    /// The solver minimises `energy_scale`·E; energies and gradients reported
+    /// and tested are scaled too (1/Σ|q| gives the area-weighted mean).
+    pub energy_scale: f64,
+    /// Armijo sufficient-decrease constant c₁.
+    pub armijo_c1: f64,
+    /// Backtracking factor (0 < β < 1).
+    pub backtrack: f64,
+    /// Give up the line search below this step length.
+    pub min_step: f64,
+    /// Start barrier line searches at `barrier_safety`·α_max (inversion-free bound).
+    pub barrier_safety: f64,
+    /// Relative diagonal shift used when nothing is fixed (null space), see
+    /// [`crate::linear`]. Systems with fixed DOFs start unshifted.
+    pub null_space_shift: f64,
+    /// Maximum factorisation attempts with growing shift.
+    pub shift_attempts: usize,
+    /// PCG iteration cap per Newton step.
+    pub pcg_max_iters: usize,
+    /// PCG forcing term η_k = clamp(√(‖∇E_k‖∞/‖∇E₀‖∞), `pcg_rel_min`, `pcg_rel_max`):
+    /// loose far from the solution, tight near it (inexact Newton).
+    pub pcg_rel_max: f64,
+    /// Lower bound of the PCG forcing term.
+    pub pcg_rel_min: f64,
+}
+
+impl Default for NewtonParams {
+    fn default() -> Self {
+        NewtonParams {
+            tol_abs: 1e-4,
+            tol_rel: 0.0,
+            max_iters: 500,
+            filter: Filter::default(),
+            adaptive_filter: false,
+            adaptive_threshold: 0.01,
+            linear_solver: LinearSolver::Auto,
+            max_factor_bytes: 2 << 30,
+            energy_scale: 1.0,
+            armijo_c1: 1e-4,
+            backtrack: 0.5,
+            min_step: 1e-12,
+            barrier_safety: 0.9,
+            null_space_shift: 1e-10,
+            shift_attempts: 12,
+            pcg_max_iters: 20_000,
+            pcg_rel_max: 0.5,
+            pcg_rel_min: 1e-8,
+        }
+    }
+}

@@ -1,0 +1,125 @@
+//! What a solve reports: per-iteration records, status and totals
+//! (serde-serialisable for JSON summaries).
+
+use serde::{Deserialize, Serialize};
+
+use crate::assembly::{NonFiniteStencil, TermTiming};
+use crate::linear::LinearSolver;
+
+/// Why the solver stopped.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind")]
+pub enum NewtonStatus {
+    /// ‖∇E‖∞ reached `tol_abs` or `tol_rel`.
+    Converged,
+    /// `max_iters` steps taken.
+    MaxIterations,
+    /// No step length down to `min_step` gave sufficient decrease.
+    LineSearchFailed {
+        /// Smallest step tried.
+        last_step: f64,
+        /// The inversion-free bound (`None`: unbounded).
+        max_step: Option<f64>,
+    },
+    /// A stencil gave a non-finite energy / gradient / Hessian at an iterate
+    /// (e.g. an inverted element in the *initial* positions of a barrier energy).
+    NonFinite(NonFiniteStencil),
+    /// The linear solve produced a non-finite or non-descent direction.
+    BadDirection {
+        /// gᵀd (should be negative).
+        slope: f64,
+    },
+    /// Cholesky failed even with the largest diagonal shift.
+    FactorizationFailed {
+        /// Last shift tried.
+        shift: f64,
+    },
+    /// The per-iteration callback asked to stop.
+    Interrupted,
+}
+
+/// One Newton step.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct IterationRecord {
+    /// Step index (0-based).
+    pub iter: usize,
+    /// Scaled energy at the start of the step.
+    pub energy: f64,
+    /// ‖∇E‖∞ (scaled, free DOFs) at the start of the step.
+    pub grad_inf: f64,
+    /// Accepted step length α.
+    pub step: f64,
+    /// Inversion-free bound on α (`None`: no barrier term or unbounded below 2).
+    pub max_step: Option<f64>,
+    /// Newton decrement λ² = −∇Eᵀd (≥ 0).
+    pub decrement: f64,
+    /// ‖α·d‖∞: the largest coordinate change.
+    pub dx_inf: f64,
+    /// Filter used for this step's Hessian.
+    pub filter: String,
+    /// Trust-region ratio ρ of this step (adaptive filter only).
+    pub rho: Option<f64>,
+    /// Absolute diagonal shift used in the linear system.
+    pub shift: f64,
+    /// PCG iterations (0 with Cholesky).
+    pub cg_iterations: usize,
+    /// Energy evaluations in the line search.
+    pub line_search_evals: usize,
+    /// Step accepted without Armijo decrease because the predicted decrease
+    /// was below the energy's rounding level.
+    pub noise_limited: bool,
+    /// Seconds: gradient + Hessian assembly.
+    pub t_assembly: f64,
+    /// Seconds: diagonal shift + numeric factorisation.
+    pub t_factor: f64,
+    /// Seconds: triangular solves or PCG.
+    pub t_solve: f64,
+    /// Seconds: inversion-free bound + energy evaluations.
+    pub t_line_search: f64,
+}
+
+/// Total seconds per phase over a solve.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct TimeSplit {
+    pub assembly: f64,
+    pub factor: f64,
+    pub solve: f64,
+    pub line_search: f64,
+    /// Wall time of the whole `solve` call.
+    pub total: f64,
+}
+
+/// The outcome of a solve. The positions passed to `solve` hold the best
+/// (lowest-energy) iterate: the line search only accepts steps that do not
+/// increase the energy.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NewtonResult {
+    pub status: NewtonStatus,
+    /// Newton steps taken.
+    pub iterations: usize,
+    /// Scaled energy at the start and at the returned positions.
+    pub initial_energy: f64,
+    pub energy: f64,
+    /// ‖∇E‖∞ at the start and at the returned positions (scaled, free DOFs).
+    pub initial_grad_inf: f64,
+    pub grad_inf: f64,
+    /// Unknowns of the reduced system.
+    pub unknowns: usize,
+    /// Linear solver actually used.
+    pub linear_solver: LinearSolver,
+    /// Symbolic analyses and numeric factorisations done by this solver object
+    /// so far (symbolic stays 1: it is done once per pattern).
+    pub symbolic_analyses: usize,
+    pub numeric_factorizations: usize,
+    pub times: TimeSplit,
+    /// Per-term evaluation cost during this solve.
+    pub terms: Vec<TermTiming>,
+    pub records: Vec<IterationRecord>,
+}
+
+impl NewtonResult {
+    /// Whether the solve converged.
+    pub fn converged(&self) -> bool {
+        self.status == NewtonStatus::Converged
+    }
+}

@@ -1,0 +1,419 @@
+//! The sparsity pattern of the reduced Hessian and the stencil→slot maps.
+//!
+//! The reduced Hessian H (unknowns × unknowns) is stored as the **upper
+//! triangle in compressed sparse columns** (rows sorted, the diagonal is the
+//! last entry of each column), exactly what faer's sparse Cholesky reads. An
+//! entry (i, j), i ≤ j, exists iff the vertices owning unknowns i and j share
+//! a stencil of some term; the diagonal always exists.
+//!
+//! For every stencil the local Hessian entries (a, b), a ≤ b in local DOF
+//! order (packed row-major upper: `(0,0), (0,1), …, (0,k−1), (1,1), …`), map
+//! to one global *slot* (an index into the value array), or to `NO_SLOT` when
+//! either DOF is fixed. Each Newton iteration only refills values through
+//! these maps; nothing is rebuilt.
+
+use rayon::prelude::*;
+
+use crate::colour::{Colouring, colour_stencils};
+use crate::dofs::DofMap;
+use crate::error::FemError;
+
+/// Marks a local entry that touches a fixed DOF.
+pub(crate) const NO_SLOT: u32 = u32::MAX;
+
+/// Upper-triangular CSC pattern of the reduced Hessian.
+#[derive(Clone, Debug)]
+pub struct Pattern {
+    n: usize,
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// Unknowns whose vertex is in no stencil (their row/column is empty).
+    isolated: Vec<usize>,
+}
+
+impl Pattern {
+    /// Matrix dimension (number of unknowns).
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Number of stored entries (upper triangle incl. diagonal).
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// Column pointers (length n + 1).
+    pub fn col_ptr(&self) -> &[usize] {
+        &self.col_ptr
+    }
+
+    /// Row indices, sorted within each column.
+    pub fn row_idx(&self) -> &[usize] {
+        &self.row_idx
+    }
+
+    /// Slot of the diagonal entry of column `j`.
+    #[inline]
+    pub fn diag_slot(&self, j: usize) -> usize {
+        self.col_ptr[j + 1] - 1
+    }
+
+    /// Unknowns that no stencil touches.
+    pub fn isolated(&self) -> &[usize] {
+        &self.isolated
+    }
+
+    /// The slot of entry (i, j), i ≤ j, if it is in the pattern.
+    pub fn slot(&self, i: usize, j: usize) -> Option<usize> {
+        let (i, j) = if i <= j { (i, j) } else { (j, i) };
+        let lo = self.col_ptr[j];
+        let rows = &self.row_idx[lo..self.col_ptr[j + 1]];
+        rows.binary_search(&i).ok().map(|p| lo + p)
+    }
+
+    /// y = H x for the symmetric matrix whose upper triangle is `values`
+    /// (sequential; used for small checks and the model decrease).
+    pub fn sym_matvec(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
+        y.fill(0.0);
+        for j in 0..self.n {
+            let (lo, hi) = (self.col_ptr[j], self.col_ptr[j + 1]);
+            for (&i, &v) in self.row_idx[lo..hi].iter().zip(&values[lo..hi]) {
+                y[i] += v * x[j];
+                if i != j {
+                    y[j] += v * x[i];
+                }
+            }
+        }
+    }
+
+    /// xᵀ H x for the symmetric matrix whose upper triangle is `values`
+    /// (parallel over columns, deterministic chunked sum).
+    pub fn quadratic_form(&self, values: &[f64], x: &[f64], partials: &mut Vec<f64>) -> f64 {
+        crate::parallel::sum_indexed(self.n, partials, |j| {
+            let mut s = 0.0;
+            let (lo, hi) = (self.col_ptr[j], self.col_ptr[j + 1]);
+            for (&i, &v) in self.row_idx[lo..hi].iter().zip(&values[lo..hi]) {
+                let w = if i == j { 1.0 } else { 2.0 };
+                s += w * v * x[i];
+            }
+            s * x[j]
+        })
+    }
+}
+
+/// Per-term assembly plan: slot map and colouring.
+#[derive(Clone, Debug)]
+pub(crate) struct TermPlan {
+    /// Local DOFs per stencil, k = arity·D.
+    pub k: usize,
+    /// Packed upper local entries per stencil, k(k+1)/2.
+    pub n_local: usize,
+    /// `n_stencils × n_local` slots (or `NO_SLOT`).
+    pub slots: Vec<u32>,
+    pub colouring: Colouring,
+}
+
+/// Stencil lists of all terms: (name, arity, flat vertex list).
+pub(crate) struct StencilSet<'a> {
+    pub name: &'a str,
+    pub arity: usize,
+    pub stencils: &'a [usize],
+}
+
+/// Check one term's stencils (arity, range, repeats, size).
+pub(crate) fn validate(
+    set: &StencilSet<'_>,
+    n_vertices: usize,
+    dim: usize,
+) -> Result<(), FemError> {
+    let term = || set.name.to_string();
+    if set.arity == 0 {
+        return Err(FemError::ZeroArity { term: term() });
+    }
+    if !set.stencils.len().is_multiple_of(set.arity) {
+        return Err(FemError::BadStencilList {
+            term: term(),
+            len: set.stencils.len(),
+            arity: set.arity,
+        });
+    }
+    let dofs = set.arity * dim;
+    if dofs > crate::term::MAX_STENCIL_DOFS {
+        return Err(FemError::StencilTooLarge {
+            term: term(),
+            dofs,
+            max: crate::term::MAX_STENCIL_DOFS,
+        });
+    }
+    for (s, st) in set.stencils.chunks_exact(set.arity).enumerate() {
+        for (a, &v) in st.iter().enumerate() {
+            if v >= n_vertices {
+                return Err(FemError::VertexOutOfRange {
+                    term: term(),
+                    stencil: s,
+                    vertex: v,
+                    n_vertices,
+                });
+            }
+            if st[..a].contains(&v) {
+                return Err(FemError::RepeatedVertex {
+                    term: term(),
+                    stencil: s,
+                    vertex: v,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Build the pattern and the per-term plans.
+pub(crate) fn build(
+    sets: &[StencilSet<'_>],
+    dofs: &DofMap,
+) -> Result<(Pattern, Vec<TermPlan>), FemError> {
+    let nv = dofs.n_vertices();
+    let dim = dofs.dim();
+    for set in sets {
+        validate(set, nv, dim)?;
+    }
+    let active: Vec<bool> = (0..nv).map(|v| dofs.vertex_has_free(v)).collect();
+
+    // vertex pairs (col ≥ row) as u64 keys col·2³² + row, plus every active diagonal
+    let mut keys: Vec<u64> = Vec::new();
+    let mut touched = vec![false; nv];
+    for set in sets {
+        for st in set.stencils.chunks_exact(set.arity) {
+            for (a, &va) in st.iter().enumerate() {
+                touched[va] = true;
+                if !active[va] {
+                    continue;
+                }
+                for &vb in &st[a + 1..] {
+                    if active[vb] {
+                        let (r, c) = if va < vb { (va, vb) } else { (vb, va) };
+                        keys.push(((c as u64) << 32) | r as u64);
+                    }
+                }
+            }
+        }
+    }
+    keys.extend(
+        (0..nv)
+            .filter(|&v| active[v])
+            .map(|v| ((v as u64) << 32) | v as u64),
+    );
+    keys.par_sort_unstable();
+    keys.dedup();
+
+    // vertex-level upper CSC
+    let mut vptr = vec![0usize; nv + 1];
+    for &k in &keys {
+        vptr[(k >> 32) as usize + 1] += 1;
+    }
+    for v in 0..nv {
+        vptr[v + 1] += vptr[v];
+    }
+    let vrow: Vec<u32> = keys.iter().map(|&k| (k & 0xffff_ffff) as u32).collect();
+    drop(keys);
+
+    // DOF-level upper CSC over unknowns (unknowns are numbered in DOF order)
+    let n = dofs.n_unknowns();
+    let table = dofs.unknown_table();
+    let mut col_ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        let dj = dofs.dof(j);
+        let v = dj / dim;
+        let mut cnt = 0;
+        for &u in &vrow[vptr[v]..vptr[v + 1]] {
+            for c in 0..dim {
+                let ui = table[u as usize * dim + c];
+                if ui != u32::MAX && (ui as usize) <= j {
+                    cnt += 1;
+                }
+            }
+        }
+        col_ptr[j + 1] = col_ptr[j] + cnt;
+    }
+    let nnz = col_ptr[n];
+    if nnz >= NO_SLOT as usize {
+        return Err(FemError::TooLarge {
+            what: "Hessian nonzero",
+            count: nnz,
+            max: NO_SLOT as usize - 1,
+        });
+    }
+    let mut row_idx = vec![0usize; nnz];
+    {
+        let mut p = 0;
+        for j in 0..n {
+            let v = dofs.dof(j) / dim;
+            for &u in &vrow[vptr[v]..vptr[v + 1]] {
+                for c in 0..dim {
+                    let ui = table[u as usize * dim + c];
+                    if ui != u32::MAX && (ui as usize) <= j {
+                        row_idx[p] = ui as usize;
+                        p += 1;
+                    }
+                }
+            }
+        }
+    }
+    let isolated: Vec<usize> = (0..n).filter(|&j| !touched[dofs.dof(j) / dim]).collect();
+    let pattern = Pattern {
+        n,
+        col_ptr,
+        row_idx,
+        isolated,
+    };
+
+    let plans = sets
+        .iter()
+        .map(|set| {
+            let k = set.arity * dim;
+            let n_local = k * (k + 1) / 2;
+            let n_st = set.stencils.len() / set.arity;
+            let mut slots = vec![NO_SLOT; n_st * n_local];
+            slots
+                .par_chunks_mut(n_local.max(1))
+                .enumerate()
+                .for_each(|(s, out)| {
+                    let st = &set.stencils[s * set.arity..(s + 1) * set.arity];
+                    let unk = |a: usize| table[st[a / dim] * dim + a % dim];
+                    let mut q = 0;
+                    for a in 0..k {
+                        let ia = unk(a);
+                        for b in a..k {
+                            let ib = unk(b);
+                            if ia != u32::MAX && ib != u32::MAX {
+                                // in the pattern by construction
+                                out[q] = pattern
+                                    .slot(ia as usize, ib as usize)
+                                    .map_or(NO_SLOT, |x| x as u32);
+                            }
+                            q += 1;
+                        }
+                    }
+                });
+            let colouring = colour_stencils(nv, set.arity, set.stencils, &active);
+            TermPlan {
+                k,
+                n_local,
+                slots,
+                colouring,
+            }
+        })
+        .collect();
+    Ok((pattern, plans))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_triangles_pattern() {
+        // square 0-1-2-3 split along 0-2; vertex 3 fixed; 2D
+        let tris = [0usize, 1, 2, 0, 2, 3];
+        let dofs = DofMap::from_fixed_vertices(5, 2, &[3]).unwrap(); // vertex 4 isolated
+        let sets = [StencilSet {
+            name: "t",
+            arity: 3,
+            stencils: &tris,
+        }];
+        let (p, plans) = build(&sets, &dofs).unwrap();
+        assert_eq!(p.n(), 8); // vertices 0,1,2,4 free
+        // vertices 0,1,2 are all coupled: 6×6 dense upper = 21 entries; vertex 4: 2×2 upper = 3
+        assert_eq!(p.nnz(), 21 + 3);
+        assert_eq!(p.isolated(), &[6, 7]);
+        for j in 0..p.n() {
+            assert_eq!(p.row_idx()[p.diag_slot(j)], j);
+        }
+        let plan = &plans[0];
+        assert_eq!(plan.k, 6);
+        assert_eq!(plan.n_local, 21);
+        // second triangle: local dofs 4,5 are vertex 3 (fixed)
+        let s1 = &plan.slots[21..42];
+        assert_eq!(s1.iter().filter(|&&x| x == NO_SLOT).count(), 21 - 10);
+        // first triangle, local (0,5) = unknowns (0, 5)
+        assert_eq!(plan.slots[5] as usize, p.slot(0, 5).unwrap());
+        assert_eq!(plan.colouring.n_colours(), 2);
+    }
+
+    #[test]
+    fn invalid_stencils_are_reported() {
+        let dofs = DofMap::all_free(3, 2).unwrap();
+        let bad = [0usize, 1, 1];
+        let e = build(
+            &[StencilSet {
+                name: "t",
+                arity: 3,
+                stencils: &bad,
+            }],
+            &dofs,
+        )
+        .unwrap_err();
+        assert!(matches!(
+            e,
+            FemError::RepeatedVertex {
+                stencil: 0,
+                vertex: 1,
+                ..
+            }
+        ));
+        let bad = [0usize, 1, 7];
+        let e = build(
+            &[StencilSet {
+                name: "t",
+                arity: 3,
+                stencils: &bad,
+            }],
+            &dofs,
+        )
+        .unwrap_err();
+        assert!(matches!(e, FemError::VertexOutOfRange { vertex: 7, .. }));
+        let bad = [0usize, 1];
+        let e = build(
+            &[StencilSet {
+                name: "t",
+                arity: 3,
+                stencils: &bad,
+            }],
+            &dofs,
+        )
+        .unwrap_err();
+        assert!(matches!(e, FemError::BadStencilList { .. }));
+        let e = build(
+            &[StencilSet {
+                name: "t",
+                arity: 7,
+                stencils: &[],
+            }],
+            &dofs,
+        )
+        .unwrap_err();
+        assert!(matches!(e, FemError::StencilTooLarge { .. }));
+    }
+
+    #[test]
+    fn symmetric_products_agree() {
+        let tris = [0usize, 1, 2, 1, 3, 2];
+        let dofs = DofMap::all_free(4, 2).unwrap();
+        let (p, _) = build(
+            &[StencilSet {
+                name: "t",
+                arity: 3,
+                stencils: &tris,
+            }],
+            &dofs,
+        )
+        .unwrap();
+        let vals: Vec<f64> = (0..p.nnz()).map(|i| (i as f64 * 0.7).cos()).collect();
+        let x: Vec<f64> = (0..p.n()).map(|i| (i as f64 * 1.3).sin()).collect();
+        let mut y = vec![0.0; p.n()];
+        p.sym_matvec(&vals, &x, &mut y);
+        let xhx: f64 = x.iter().zip(&y).map(|(a, b)| a * b).sum();
+        let mut partials = Vec::new();
+        assert!((p.quadratic_form(&vals, &x, &mut partials) - xhx).abs() < 1e-12);
+    }
+}

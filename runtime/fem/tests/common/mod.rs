@@ -1,0 +1,107 @@
+//! Shared helpers for the integration tests.
+#![allow(dead_code)]
+
+use ecc_fem::{Filter, Term};
+
+/// Zero-rest-length-offset springs: e = ½ k ‖x_i − x_j − r_ij‖² (quadratic,
+/// convex, couples vertex pairs; the minimiser is any translate of the rest
+/// offsets, so some vertex must be fixed or anchored).
+pub struct OffsetSprings<const D: usize> {
+    pub edges: Vec<usize>,
+    pub offsets: Vec<[f64; D]>,
+    pub k: f64,
+}
+
+impl<const D: usize> OffsetSprings<D> {
+    pub fn from_rest(rest: &[[f64; D]], edges: Vec<usize>, k: f64) -> Self {
+        let offsets = edges
+            .chunks(2)
+            .map(|e| std::array::from_fn(|c| rest[e[0]][c] - rest[e[1]][c]))
+            .collect();
+        OffsetSprings { edges, offsets, k }
+    }
+
+    fn residual(&self, s: usize, x: &[[f64; D]]) -> [f64; D] {
+        let (i, j) = (self.edges[2 * s], self.edges[2 * s + 1]);
+        std::array::from_fn(|c| x[i][c] - x[j][c] - self.offsets[s][c])
+    }
+}
+
+impl<const D: usize> Term<D> for OffsetSprings<D> {
+    fn name(&self) -> &str {
+        "springs"
+    }
+    fn arity(&self) -> usize {
+        2
+    }
+    fn stencils(&self) -> &[usize] {
+        &self.edges
+    }
+    fn value(&self, s: usize, x: &[[f64; D]]) -> f64 {
+        0.5 * self.k * self.residual(s, x).iter().map(|r| r * r).sum::<f64>()
+    }
+    fn evaluate(
+        &self,
+        s: usize,
+        x: &[[f64; D]],
+        _f: Filter,
+        grad: &mut [f64],
+        hess: Option<&mut [f64]>,
+    ) -> f64 {
+        let r = self.residual(s, x);
+        for c in 0..D {
+            grad[c] = self.k * r[c];
+            grad[D + c] = -self.k * r[c];
+        }
+        if let Some(h) = hess {
+            let n = 2 * D;
+            h.fill(0.0);
+            for c in 0..D {
+                h[c * n + c] = self.k;
+                h[(D + c) * n + D + c] = self.k;
+                h[c * n + D + c] = -self.k;
+                h[(D + c) * n + c] = -self.k;
+            }
+        }
+        self.value(s, x)
+    }
+}
+
+/// A structured (m+1)×(m+1) grid on [0,1]², two triangles per cell (CCW).
+pub fn grid(m: usize) -> (Vec<[f64; 2]>, Vec<[usize; 3]>) {
+    let mut x = Vec::new();
+    for i in 0..=m {
+        for j in 0..=m {
+            x.push([j as f64 / m as f64, i as f64 / m as f64]);
+        }
+    }
+    let mut t = Vec::new();
+    let w = m + 1;
+    for i in 0..m {
+        for j in 0..m {
+            let a = i * w + j;
+            t.push([a, a + 1, a + w + 1]);
+            t.push([a, a + w + 1, a + w]);
+        }
+    }
+    (x, t)
+}
+
+/// Unique edges of a triangle list, flat pairs.
+pub fn edges(tris: &[[usize; 3]]) -> Vec<usize> {
+    let mut e: Vec<(usize, usize)> = tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    e.sort_unstable();
+    e.dedup();
+    e.into_iter().flat_map(|(a, b)| [a, b]).collect()
+}
+
+/// Path to a shared mesh.
+pub fn data(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/data")
+        .join(name)
+}
