@@ -7,8 +7,8 @@ use std::fs;
 
 use common::data;
 use ecc_mesh::{
-    AnyMesh, MeshError, TriMesh, TutteWeights, ValidationError, box_tet, disk_tri, parse_vtk,
-    read_mesh, read_tet_mesh, read_tri_mesh, tutte_embedding, write_obj, write_vtk_tet,
+    AnyMesh, MeshError, PointData, TriMesh, TutteWeights, ValidationError, box_tet, disk_tri,
+    parse_vtk, read_mesh, read_tet_mesh, read_tri_mesh, tutte_embedding, write_obj, write_vtk_tet,
     write_vtk_tri,
 };
 
@@ -36,7 +36,7 @@ fn obj_round_trip_with_tutte_uvs_is_bit_exact() {
 
     // Without uvs, plain `f a b c`; awkward magnitudes survive.
     let mut m = disk_tri(2, 1.0);
-    m.positions[0] = [1e-300, -0.0, 123456789.123456789];
+    m.positions[0] = [1e-300, -0.0, 0.1 + 0.2];
     m.positions[1][0] = 5e-324;
     let path = dir.path().join("disk.obj");
     write_obj(&path, &m).unwrap();
@@ -95,7 +95,7 @@ fn bad_data_is_refused_before_writing() {
     let n = tets.positions.len();
     let ok = vec![0.0; n];
     let path = dir.path().join("x.vtk");
-    let cases: Vec<(Vec<(&str, &[f64], usize)>, &str)> = vec![
+    let cases: Vec<(Vec<PointData<'_>>, &str)> = vec![
         (
             vec![("a", &ok[..n - 1], 1)],
             "point data \"a\" has 7 values, expected 8 vertices × 1 components",
