@@ -57,16 +57,20 @@
 pub mod assembly;
 mod colour;
 pub mod dofs;
+pub mod elastic;
 pub mod error;
 pub mod linear;
 pub mod newton;
 mod parallel;
 pub mod pattern;
+pub mod quality;
+pub mod roots;
 pub mod term;
 pub mod terms;
 
 pub use assembly::{Assembler, NonFiniteStencil, TermTiming};
 pub use dofs::DofMap;
+pub use elastic::{Elastic, Simplex, Tet, Tri};
 pub use error::FemError;
 pub use linear::LinearSolver;
 pub use newton::params::NewtonParams;
