@@ -56,6 +56,7 @@
 
 pub mod assembly;
 mod colour;
+pub mod deform;
 pub mod dofs;
 pub mod elastic;
 pub mod error;

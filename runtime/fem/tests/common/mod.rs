@@ -105,3 +105,56 @@ pub fn data(name: &str) -> std::path::PathBuf {
         .join("../../../shared/data")
         .join(name)
 }
+
+/// A structured m×m×m grid of the unit cube, 6 positively oriented tets per cell.
+pub fn tet_grid(m: usize) -> (Vec<[f64; 3]>, Vec<[usize; 4]>) {
+    let w = m + 1;
+    let id = |i: usize, j: usize, k: usize| (k * w + j) * w + i;
+    let mut x = Vec::new();
+    for k in 0..=m {
+        for j in 0..=m {
+            for i in 0..=m {
+                x.push([
+                    i as f64 / m as f64,
+                    j as f64 / m as f64,
+                    k as f64 / m as f64,
+                ]);
+            }
+        }
+    }
+    let perms = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    let mut tets = Vec::new();
+    for k in 0..m {
+        for j in 0..m {
+            for i in 0..m {
+                for p in perms {
+                    let mut c = [i, j, k];
+                    let mut t = [id(c[0], c[1], c[2]), 0, 0, 0];
+                    for (s, &axis) in p.iter().enumerate() {
+                        c[axis] += 1;
+                        t[s + 1] = id(c[0], c[1], c[2]);
+                    }
+                    if ecc_fem::quality::tet_signed_volume(&x, t) < 0.0 {
+                        t.swap(1, 2);
+                    }
+                    tets.push(t);
+                }
+            }
+        }
+    }
+    (x, tets)
+}
+
+/// Deterministic pseudo-random numbers in [−1, 1].
+pub fn noise(seed: u64, n: usize) -> Vec<f64> {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    (0..n).map(|_| rng.gen_range(-1.0..1.0)).collect()
+}
