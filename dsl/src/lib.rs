@@ -7,9 +7,10 @@ pub mod front;
 pub mod ir;
 pub mod poly;
 pub mod span;
+pub mod testing;
 
 pub use cas::{Env, Graph, Id, Node, Sym, Tape, eval, eval_many};
-pub use compile::{compile, compile_dim};
+pub use compile::{compile, compile_dim, slot_pairs};
 pub use diag::{Diagnostics, Error};
 pub use ir::{DimIr, InvariantDerivs, Module, PairIr, ParamDecl, Path, ScaleIr, SpectralIr};
 pub use poly::Proof;

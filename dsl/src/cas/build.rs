@@ -263,6 +263,15 @@ impl Graph {
                     let xe = self.product(&[x, exp]);
                     return self.exp(xe);
                 }
+                Node::Add(_) if int_e.is_some() => {
+                    if let Some((g, prim)) = self.add_content(base)
+                        && let Some(gn) = int_e.and_then(|n| rat::pow_int(&g, n))
+                    {
+                        let p = self.add(Node::Pow([prim, exp]));
+                        let c = self.num(gn);
+                        return self.product(&[c, p]);
+                    }
+                }
                 _ => {}
             }
         } else if self.is_int(base, 1) {

@@ -2,7 +2,7 @@
 //!
 //! The text depends only on the expression's structure, never on node ids or
 //! insertion order: sum terms are ordered by (total degree descending, text),
-//! product factors by (symbols and their powers first, text). Coefficients
+//! product factors by (parameters, invariants, stretches, then the rest; text). Coefficients
 //! are exact (`I2/2`, `-3*I1/(2*I3)`), negative powers print as divisions,
 //! `x^(1/2)` prints as `sqrt(x)`. Parameters print by name, σk as `s{k+1}`.
 
@@ -224,14 +224,15 @@ impl Graph {
         }
     }
 
-    /// Ordering rank of a product factor's base: symbols first, in symbol order.
+    /// Ordering rank of a product factor's base: parameters, then I1, I2, I3,
+    /// σ's, then everything else.
     fn rank(&self, base: Id) -> u8 {
         match self.get(base) {
-            Node::Sym(Sym::I1) => 0,
-            Node::Sym(Sym::I2) => 1,
-            Node::Sym(Sym::I3) => 2,
-            Node::Sym(Sym::Sigma(k)) => 3 + k.min(&2),
-            Node::Sym(Sym::Param(_)) => 6,
+            Node::Sym(Sym::Param(_)) => 0,
+            Node::Sym(Sym::I1) => 1,
+            Node::Sym(Sym::I2) => 2,
+            Node::Sym(Sym::I3) => 3,
+            Node::Sym(Sym::Sigma(k)) => 4 + k.min(&2),
             _ => 7,
         }
     }

@@ -5,7 +5,7 @@ use num_traits::Zero;
 
 use crate::cas::{Env, Graph, Id, Node, Sym, Tape};
 use crate::diag::Error;
-use crate::poly::{Converter, Proof, RatFun};
+use crate::poly::{Converter, Proof};
 use crate::span::Span;
 
 /// The pairs (i, j) of stretches in `dim`.
@@ -18,34 +18,20 @@ pub fn pairs(dim: u8) -> Vec<(u8, u8)> {
 }
 
 /// Whether the (signed) substitution σi ↦ s·σj, σj ↦ s·σi leaves `psi`
-/// unchanged: `Some(true/false)` when decided exactly (rational identity or
-/// canonical equality), `None` otherwise.
+/// unchanged: `Some(true/false)` when decided exactly, `None` otherwise.
+///
+/// Both sides are converted to rational functions whose variables are σ, the
+/// parameters and atoms in normal form (see `Converter::normal_form`); equal
+/// rational functions prove equality. A difference proves inequality only
+/// when no atom is involved.
 fn invariant_under(
     g: &mut Graph,
     conv: &mut Converter,
     psi_s: Id,
-    rf: Option<&RatFun>,
     i: u8,
     j: u8,
     negate: bool,
 ) -> Option<bool> {
-    if let Some(rf) = rf {
-        let perm = |v: usize| {
-            if v == i as usize {
-                (j as usize, negate)
-            } else if v == j as usize {
-                (i as usize, negate)
-            } else {
-                (v, false)
-            }
-        };
-        if let Ok(p) = rf.signed_permute(&perm)
-            && let Ok(diff) = rf.sub(&p)
-        {
-            return Some(diff.is_zero());
-        }
-    }
-    let _ = conv;
     let si = g.sym(Sym::Sigma(i));
     let sj = g.sym(Sym::Sigma(j));
     let (ti, tj) = if negate {
@@ -58,7 +44,19 @@ fn invariant_under(
         Sym::Sigma(k) if k == j => Some(tj),
         _ => None,
     });
-    if swapped == psi_s { Some(true) } else { None }
+    if swapped == psi_s {
+        return Some(true);
+    }
+    let a = conv.convert(g, psi_s)?;
+    let b = conv.convert(g, swapped)?;
+    let diff = a.sub(&b).ok()?;
+    if diff.is_zero() {
+        Some(true)
+    } else if !conv.has_atoms(&diff) {
+        Some(false)
+    } else {
+        None
+    }
 }
 
 /// Deterministic pseudo-random numbers (splitmix64) for numeric checks.
@@ -92,11 +90,10 @@ pub fn check_isotropy(
     span: Span,
     no_s3: bool,
 ) -> Result<bool, Error> {
-    let rf = conv.rational(g, psi_s);
     let mut numeric_only = false;
     let mut failing: Vec<(u8, u8)> = Vec::new();
     for (i, j) in pairs(dim) {
-        match invariant_under(g, conv, psi_s, rf.as_ref(), i, j, false) {
+        match invariant_under(g, conv, psi_s, i, j, false) {
             Some(true) => {}
             Some(false) => failing.push((i, j)),
             None => {
@@ -140,10 +137,9 @@ fn numerically_differs(g: &Graph, psi_s: Id, dim: u8, params: &[f64], i: u8, j: 
 
 /// Ψ unchanged by (σi, σj) → (−σj, −σi) for every pair, proved exactly.
 pub fn sign_symmetric(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8) -> bool {
-    let rf = conv.rational(g, psi_s);
     pairs(dim)
         .into_iter()
-        .all(|(i, j)| invariant_under(g, conv, psi_s, rf.as_ref(), i, j, true) == Some(true))
+        .all(|(i, j)| invariant_under(g, conv, psi_s, i, j, true) == Some(true))
 }
 
 /// Whether Ψ has a log, a negative power or a fractional power of something

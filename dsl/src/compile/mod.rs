@@ -16,28 +16,54 @@ use crate::span::Span;
 
 /// Parse and resolve a source text (all syntax and name errors at once).
 pub fn front_end(source: &str, free_params: bool) -> Result<sema::Program, Diagnostics> {
+    let (prog, errors) = front_end_partial(source, free_params);
+    if errors.is_empty() {
+        Ok(prog)
+    } else {
+        Err(Diagnostics { errors })
+    }
+}
+
+/// Parse and resolve, returning the (possibly poisoned) program and every
+/// syntax and name error.
+fn front_end_partial(source: &str, free_params: bool) -> (sema::Program, Vec<Error>) {
     let (stmts, mut errors) = parse::parse_source(source);
     let failed: Vec<&str> = errors
         .iter()
         .filter_map(|e| source.get(failed_statement(source, e.span())))
         .collect();
-    match sema::resolve(&stmts, &failed, free_params, source.len()) {
-        Ok(p) if errors.is_empty() => Ok(p),
-        Ok(_) => Err(Diagnostics { errors }),
-        Err(more) => {
-            errors.extend(more);
-            errors.sort_by_key(|e| e.span().start);
-            Err(Diagnostics { errors })
-        }
-    }
+    let (prog, more) = sema::resolve(&stmts, &failed, free_params, source);
+    errors.extend(more);
+    errors.sort_by_key(|e| e.span().start);
+    (prog, errors)
 }
 
-/// The statement containing `span` (for "was this failed statement psi?").
+/// The statement containing `span` (for "what was this failed statement?").
 fn failed_statement(source: &str, span: Span) -> std::ops::Range<usize> {
     parse::split_statements(source)
         .into_iter()
         .find(|s| s.start <= span.start && span.start <= s.end)
         .map_or(0..0, |s| s.range())
+}
+
+fn push_unique(errors: &mut Vec<Error>, more: Vec<Error>) {
+    for e in more {
+        if !errors.contains(&e) {
+            errors.push(e);
+        }
+    }
+}
+
+/// `errors` plus the lowering errors (division by zero, …) of every
+/// dimension in `dims`, so that one run reports everything.
+fn with_lowering_errors(prog: &sema::Program, mut errors: Vec<Error>, dims: &[u8]) -> Diagnostics {
+    for &d in dims {
+        if let Err(es) = lower::lower_program(prog, d) {
+            push_unique(&mut errors, es);
+        }
+    }
+    errors.sort_by_key(|e| e.span().start);
+    Diagnostics { errors }
 }
 
 fn dim_of(prog: &sema::Program, dim: u8) -> Result<DimIr, Vec<Error>> {
@@ -50,6 +76,17 @@ fn dim_of(prog: &sema::Program, dim: u8) -> Result<DimIr, Vec<Error>> {
         no_s3: !prog.stretch_uses.iter().any(|(k, _)| *k == 2),
     };
     dim::build_dim(g, psi, &input).map_err(|e| vec![e])
+}
+
+/// The dimensions `compile` builds, and the ones it skips with the reason.
+fn applicable_dims(prog: &sema::Program) -> (Vec<u8>, Vec<(u8, String)>) {
+    match prog.dim {
+        Some((d, _)) => (vec![d], vec![(5 - d, format!("declared dim {d}"))]),
+        None if prog.stretch_uses.iter().any(|(k, _)| *k == 2) => {
+            (vec![3], vec![(2, "uses s3".to_string())])
+        }
+        None => (vec![2, 3], Vec::new()),
+    }
 }
 
 /// Compile `source` for dimension `dim` (2 or 3).
@@ -65,32 +102,35 @@ pub fn compile_dim(source: &str, name: &str, dim: u8) -> Result<DimIr, Diagnosti
         }
         .into());
     }
-    let prog = front_end(source, false)?;
+    let (prog, mut errors) = front_end_partial(source, false);
     if let Some((declared, span)) = prog.dim
         && declared != dim
     {
-        return Err(Error::DimMismatch {
+        errors.push(Error::DimMismatch {
             span,
             declared,
             requested: dim,
-        }
-        .into());
+        });
     }
-    if dim == 2 {
-        let errors: Vec<Error> = prog
-            .stretch_uses
-            .iter()
-            .filter(|(k, _)| *k == 2)
-            .map(|(_, span)| Error::StretchOutOfDim {
-                span: *span,
-                name: "s3".into(),
-                dim: 2,
-                declared: None,
-            })
-            .collect();
-        if !errors.is_empty() {
-            return Err(Diagnostics { errors });
+    if dim == 2 && prog.dim.is_none() {
+        for (k, span) in &prog.stretch_uses {
+            if *k == 2 {
+                errors.push(Error::StretchOutOfDim {
+                    span: *span,
+                    name: "s3".into(),
+                    dim: 2,
+                    declared: None,
+                });
+            }
         }
+    }
+    if !errors.is_empty() {
+        let dims: &[u8] = if prog.dim.is_some_and(|(d, _)| d != dim) {
+            &[]
+        } else {
+            &[dim]
+        };
+        return Err(with_lowering_errors(&prog, errors, dims));
     }
     dim_of(&prog, dim).map_err(|errors| Diagnostics { errors })
 }
@@ -99,31 +139,17 @@ pub fn compile_dim(source: &str, name: &str, dim: u8) -> Result<DimIr, Diagnosti
 /// else 3 only if `s3` is used, else 2 and 3. All errors of all dimensions
 /// are reported together.
 pub fn compile(source: &str, name: &str) -> Result<Module, Diagnostics> {
-    let prog = front_end(source, false)?;
-    let mut skipped = Vec::new();
-    let dims: Vec<u8> = match prog.dim {
-        Some((d, _)) => {
-            skipped.push((5 - d, format!("declared dim {d}")));
-            vec![d]
-        }
-        None if prog.stretch_uses.iter().any(|(k, _)| *k == 2) => {
-            skipped.push((2, "uses s3".to_string()));
-            vec![3]
-        }
-        None => vec![2, 3],
-    };
+    let (prog, errors) = front_end_partial(source, false);
+    let (dims, skipped) = applicable_dims(&prog);
+    if !errors.is_empty() {
+        return Err(with_lowering_errors(&prog, errors, &dims));
+    }
     let mut out = Vec::new();
-    let mut errors: Vec<Error> = Vec::new();
+    let mut errors = Vec::new();
     for d in dims {
         match dim_of(&prog, d) {
             Ok(ir) => out.push(ir),
-            Err(es) => {
-                for e in es {
-                    if !errors.contains(&e) {
-                        errors.push(e);
-                    }
-                }
-            }
+            Err(es) => push_unique(&mut errors, es),
         }
     }
     if !errors.is_empty() {

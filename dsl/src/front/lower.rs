@@ -15,7 +15,8 @@ use super::sema::{Func, Program, RExpr, Var, mentions_d};
 use crate::cas::{Graph, Id, Sym};
 use crate::diag::Error;
 
-/// Lower `prog` for dimension `dim`: the graph and Ψ's id.
+/// Lower `prog` for dimension `dim`: the graph and Ψ's id, or the errors
+/// found (empty when Ψ depends on something already reported as an error).
 pub fn lower_program(prog: &Program, dim: u8) -> Result<(Graph, Id), Vec<Error>> {
     let names = prog.params.iter().map(|p| p.name.clone()).collect();
     let mut g = Graph::new(names);
@@ -29,15 +30,9 @@ pub fn lower_program(prog: &Program, dim: u8) -> Result<(Graph, Id), Vec<Error>>
     let psi = lower_expr(&mut g, &prog.psi, dim, &lets, &lets_d, &mut errors);
     match psi {
         Some(p) if errors.is_empty() => Ok((g, p)),
-        _ => {
-            if errors.is_empty() {
-                errors.push(Error::Syntax {
-                    span: prog.psi_span,
-                    message: "psi could not be built".into(),
-                });
-            }
-            Err(errors)
-        }
+        // `errors` is empty only when psi was poisoned by an earlier
+        // (already reported) error.
+        _ => Err(errors),
     }
 }
 

@@ -67,6 +67,9 @@ pub fn split_statements(source: &str) -> Vec<Span> {
         }
         let ends = match c {
             b';' => true,
+            // A line starting with a keyword always starts a new statement
+            // (so an unclosed parenthesis cannot swallow the rest of the file).
+            b'\n' if next_line_starts_keyword(bytes, i + 1) => true,
             b'\n' if depth == 0 => {
                 let continues_back = matches!(
                     last_sig,
@@ -90,6 +93,20 @@ pub fn split_statements(source: &str) -> Vec<Span> {
     out
 }
 
+/// Whether the next line starts (after indentation) with a statement keyword.
+fn next_line_starts_keyword(bytes: &[u8], mut i: usize) -> bool {
+    while i < bytes.len() && (bytes[i] == b' ' || bytes[i] == b'\t' || bytes[i] == b'\r') {
+        i += 1;
+    }
+    let rest = &bytes[i..];
+    ["param", "let", "psi", "dim"].iter().any(|kw| {
+        rest.starts_with(kw.as_bytes())
+            && rest
+                .get(kw.len())
+                .is_none_or(|c| !(c.is_ascii_alphanumeric() || *c == b'_'))
+    })
+}
+
 /// Whether the next non-blank, non-comment line starts with a binary operator.
 fn next_line_continues(bytes: &[u8], mut i: usize) -> bool {
     while i < bytes.len() {
@@ -110,6 +127,7 @@ fn next_line_continues(bytes: &[u8], mut i: usize) -> bool {
 fn parse_statement(source: &str, span: Span) -> Result<Stmt, Error> {
     let text = &source[span.range()];
     check_nesting(text, span)?;
+    check_header(text, span)?;
     let mut pairs = EnergyParser::parse(Rule::statement, text)
         .map_err(|e| syntax_error(&e, text, span.start))?;
     let stmt = pairs
@@ -123,17 +141,31 @@ fn parse_statement(source: &str, span: Span) -> Result<Stmt, Error> {
     b.statement(stmt)
 }
 
+/// Parenthesis balance and nesting depth, checked before the grammar so the
+/// messages can point at the culprit parenthesis.
 fn check_nesting(text: &str, span: Span) -> Result<(), Error> {
-    let mut depth = 0usize;
+    let mut open: Vec<usize> = Vec::new();
     let mut carets = 0usize;
+    let mut in_comment = false;
     for (i, c) in text.char_indices() {
+        if in_comment {
+            in_comment = c != '\n';
+            continue;
+        }
         match c {
-            '(' => depth += 1,
-            ')' => depth = depth.saturating_sub(1),
+            '#' => in_comment = true,
+            '(' => open.push(i),
+            ')' if open.pop().is_none() => {
+                let at = span.start + i;
+                return Err(Error::Syntax {
+                    span: Span::new(at, at + 1),
+                    message: "unmatched `)`".into(),
+                });
+            }
             '^' => carets += 1,
             _ => {}
         }
-        if depth > MAX_NESTING || carets > MAX_NESTING {
+        if open.len() > MAX_NESTING || carets > MAX_NESTING {
             let at = span.start + i;
             return Err(Error::Syntax {
                 span: Span::new(at, at + 1),
@@ -142,6 +174,67 @@ fn check_nesting(text: &str, span: Span) -> Result<(), Error> {
                 ),
             });
         }
+    }
+    if let Some(&i) = open.last() {
+        let at = span.start + i;
+        return Err(Error::Syntax {
+            span: Span::new(at, at + 1),
+            message: "unclosed `(`".into(),
+        });
+    }
+    Ok(())
+}
+
+/// `param NAME = …`, `let NAME = …` and `psi = …` checked by hand for
+/// precise messages (the grammar alone would blame a later token).
+fn check_header(text: &str, span: Span) -> Result<(), Error> {
+    let word_end = |s: &str| {
+        s.find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+            .unwrap_or(s.len())
+    };
+    let skip_ws = |p: usize| p + text[p..].len() - text[p..].trim_start().len();
+    let lead = skip_ws(0);
+    let kw_len = word_end(&text[lead..]);
+    let kw = &text[lead..lead + kw_len];
+    if !matches!(kw, "param" | "let" | "psi") {
+        return Ok(());
+    }
+    let token_at = |p: usize| -> (String, Span) {
+        let rest = &text[p..];
+        let n = rest
+            .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_' || c == '.'))
+            .unwrap_or(rest.len())
+            .max(rest.chars().next().map_or(0, char::len_utf8));
+        let tok = &rest[..n.min(rest.len())];
+        let shown = if tok.is_empty() {
+            "end of statement".to_string()
+        } else {
+            format!("`{tok}`")
+        };
+        (
+            shown,
+            Span::new(span.start + p, span.start + p + tok.len().max(1)),
+        )
+    };
+    let mut pos = skip_ws(lead + kw_len);
+    if kw != "psi" {
+        let name_len = word_end(&text[pos..]);
+        if name_len == 0 || text[pos..].starts_with(|c: char| c.is_ascii_digit()) {
+            let (found, at) = token_at(pos);
+            return Err(Error::Syntax {
+                span: at,
+                message: format!("expected a name after `{kw}`, found {found}"),
+            });
+        }
+        pos = skip_ws(pos + name_len);
+    }
+    if !text[pos..].starts_with('=') {
+        let (found, at) = token_at(pos);
+        let what = if kw == "psi" { "`psi`" } else { "the name" };
+        return Err(Error::Syntax {
+            span: at,
+            message: format!("expected `=` after {what}, found {found}"),
+        });
     }
     Ok(())
 }

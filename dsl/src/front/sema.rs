@@ -151,6 +151,8 @@ impl Def {
 }
 
 struct Resolver<'a> {
+    /// Names declared by statements that failed to parse.
+    poisoned: Vec<String>,
     scope: HashMap<String, Def>,
     all_defs: &'a HashMap<String, Span>,
     errors: Vec<Error>,
@@ -164,13 +166,17 @@ struct Resolver<'a> {
 }
 
 /// Resolve `stmts`. `failed` are the source texts of statements that did not
-/// parse (used to avoid a spurious "missing psi" when psi had a syntax error).
+/// parse: names they were declaring resolve silently to a poisoned value, and
+/// no "missing psi" is reported if one of them may have been psi.
+///
+/// Always returns a program (with `Poison` where something failed) and the
+/// errors found, so later stages can still report their own errors.
 pub fn resolve(
     stmts: &[Stmt],
     failed: &[&str],
     free_params: bool,
-    source_len: usize,
-) -> Result<Program, Vec<Error>> {
+    source: &str,
+) -> (Program, Vec<Error>) {
     let mut all_defs: HashMap<String, Span> = HashMap::new();
     for s in stmts {
         if let Stmt::Param {
@@ -183,7 +189,9 @@ pub fn resolve(
             all_defs.entry(name.clone()).or_insert(*name_span);
         }
     }
+    let poisoned: Vec<String> = failed.iter().filter_map(|t| declared_name(t)).collect();
     let mut r = Resolver {
+        poisoned,
         scope: HashMap::new(),
         all_defs: &all_defs,
         errors: Vec::new(),
@@ -279,9 +287,13 @@ pub fn resolve(
         !(t.starts_with("param") || t.starts_with("let") || t.starts_with("dim"))
     });
     if psi.is_none() && !may_be_psi {
-        let end = source_len;
+        let end = source.trim_end().len();
+        let start = source[..end]
+            .char_indices()
+            .next_back()
+            .map_or(0, |(i, _)| i);
         r.errors.push(Error::MissingPsi {
-            span: Span::new(end, end),
+            span: Span::new(start, end),
         });
     }
     if let (Some((2, dspan)), false) = (dim, r.stretch_uses.is_empty()) {
@@ -296,19 +308,32 @@ pub fn resolve(
             }
         }
     }
-    if !r.errors.is_empty() {
-        r.errors.sort_by_key(|e| e.span().start);
-        return Err(r.errors);
-    }
+    r.errors.sort_by_key(|e| e.span().start);
     let (psi, _, psi_span) = psi.unwrap_or((RExpr::Poison, Span::default(), Span::default()));
-    Ok(Program {
+    let prog = Program {
         params: r.params,
         lets,
         psi,
         psi_span,
         dim,
         stretch_uses: r.stretch_uses,
-    })
+    };
+    (prog, r.errors)
+}
+
+/// `name` in a statement text starting with `param name` or `let name`.
+fn declared_name(text: &str) -> Option<String> {
+    let t = text.trim_start();
+    let rest = t.strip_prefix("param").or_else(|| t.strip_prefix("let"))?;
+    if !rest.starts_with(char::is_whitespace) {
+        return None;
+    }
+    let name: String = rest
+        .trim_start()
+        .chars()
+        .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+        .collect();
+    (!name.is_empty()).then_some(name)
 }
 
 impl Resolver<'_> {
@@ -427,6 +452,9 @@ impl Resolver<'_> {
         }
         if let Some((_, v)) = ALIASES.iter().find(|(n, _)| *n == name) {
             return RExpr::Var(*v);
+        }
+        if self.poisoned.iter().any(|p| p == name) {
+            return RExpr::Poison;
         }
         if self.free_params && self.constant_of.is_none() {
             let k = self.params.len() as u16;

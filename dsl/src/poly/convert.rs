@@ -23,6 +23,8 @@ use crate::cas::{Graph, Id, Node, Sym};
 
 /// Largest |integer exponent| expanded symbolically.
 const MAX_EXPAND_POWER: i64 = 64;
+/// Nesting depth up to which atoms' arguments are normalised.
+const MAX_NORMAL_DEPTH: usize = 32;
 
 /// The answer of an exact identity test.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -52,6 +54,7 @@ pub struct Converter {
     atom_index: HashMap<Atom, usize>,
     memo: HashMap<Id, Option<RatFun>>,
     inv: Option<[Id; 3]>,
+    depth: usize,
 }
 
 impl Converter {
@@ -64,6 +67,7 @@ impl Converter {
             atom_index: HashMap::new(),
             memo: HashMap::new(),
             inv: None,
+            depth: 0,
         }
     }
 
@@ -213,7 +217,7 @@ impl Converter {
                         let p = r.numer().to_i64().filter(|p| p.abs() <= MAX_EXPAND_POWER);
                         match (q, p) {
                             (Some(q), Some(p)) => {
-                                let bs = self.to_sigma(g, *b);
+                                let bs = self.normal_form(g, *b);
                                 let t = self.atom_var(Atom::Root(bs, q));
                                 let tp = Poly::monomial(
                                     BigRational::one(),
@@ -236,8 +240,44 @@ impl Converter {
     }
 
     fn opaque(&mut self, g: &mut Graph, id: Id) -> RatFun {
-        let s = self.to_sigma(g, id);
+        let s = self.normal_form(g, id);
         RatFun::poly(Poly::var(self.atom_var(Atom::Opaque(s))))
+    }
+
+    /// A canonical form of `id` modulo rational identities: invariants
+    /// substituted, rational parts expanded to numerator/denominator form,
+    /// applied recursively inside logs, exps and powers (to a bounded depth).
+    /// Two expressions with the same normal form are equal.
+    pub fn normal_form(&mut self, g: &mut Graph, id: Id) -> Id {
+        let s = self.to_sigma(g, id);
+        if self.depth > MAX_NORMAL_DEPTH {
+            return s;
+        }
+        self.depth += 1;
+        let out = match g.get(s).clone() {
+            Node::Log(x) => {
+                let n = self.normal_arg(g, x);
+                g.log(n)
+            }
+            Node::Exp(x) => {
+                let n = self.normal_arg(g, x);
+                g.exp(n)
+            }
+            Node::Pow([b, e]) if !g.as_num(e).is_some_and(|r| r.is_integer()) => {
+                let (nb, ne) = (self.normal_arg(g, b), self.normal_arg(g, e));
+                g.pow(nb, ne)
+            }
+            _ => self.normal_arg(g, s),
+        };
+        self.depth -= 1;
+        out
+    }
+
+    fn normal_arg(&mut self, g: &mut Graph, x: Id) -> Id {
+        match self.convert(g, x) {
+            Some(r) => self.to_expr_opts(g, &r, false),
+            None => x,
+        }
     }
 
     /// Decide `id ≡ 0` (as a function of σ and the parameters).
@@ -262,6 +302,11 @@ impl Converter {
     /// of numerator and denominator merged into σ powers; a power of
     /// σ0·…·σ_{d−1} common to all of them is written as a power of I3.
     pub fn to_expr(&self, g: &mut Graph, r: &RatFun) -> Id {
+        self.to_expr_opts(g, r, true)
+    }
+
+    /// [`Converter::to_expr`]; `use_i3` allows writing Π σ powers as I3 powers.
+    fn to_expr_opts(&self, g: &mut Graph, r: &RatFun, use_i3: bool) -> Id {
         if r.num.is_zero() {
             return g.zero();
         }
@@ -303,7 +348,7 @@ impl Converter {
         let mut factors: Vec<Id> = vec![g.num(c)];
         let d = self.dim as usize;
         let k = (0..d).map(|i| net[i]).max().unwrap_or(0);
-        if k < 0 {
+        if k < 0 && use_i3 {
             let i3 = g.sym(Sym::I3);
             factors.push(g.powi(i3, k));
             for x in net.iter_mut().take(d) {
