@@ -1,0 +1,223 @@
+//! [`InterpEnergy`]: an [`Energy`] evaluated from a compiled [`DimIr`] at run time.
+//!
+//! Per point, one tape evaluates Ψ and the *generic* derivatives of the IR and
+//! hands them to the runtime's generic formulas:
+//!
+//! * invariant path: Ψ, d1 = [Ψ1, Ψ2, Ψ3], d2 = [Ψ11, Ψ22, Ψ33, Ψ12, Ψ13, Ψ23]
+//!   → [`spectral_from_invariants`] (Smith et al. 2019 eqs. 22–27, App. D);
+//! * stretch path: Ψ, ∂Ψ/∂σ, ∂²Ψ/∂σ² → [`spectral_from_stretch`] (Zhu 2020 §4,
+//!   divided differences with the runtime's limit switch).
+//!
+//! This deliberately bypasses the CAS-specialised [`ecc_dsl::SpectralIr`] that
+//! generated code evaluates, so generated code and the interpreter check each
+//! other. Ψ = NaN (e.g. log of a negative number) is reported as +∞: the point
+//! is outside the energy's domain.
+
+use ecc_dsl::{DimIr, Path, Sym};
+use ecc_runtime::{Energy, EnergyInfo, ParamError, Spectral};
+use ecc_runtime::{spectral_from_invariants, spectral_from_stretch};
+
+use crate::error::BuildError;
+use crate::tape::Tape;
+
+/// Outputs of the full tape: Ψ, then 9 invariant derivatives or D + D² stretch ones.
+const MAX_OUT: usize = 1 + 3 + 9;
+
+/// An energy evaluated by interpreting its CAS graph (no code generation, no rebuild).
+#[derive(Clone, Debug)]
+pub struct InterpEnergy<const D: usize> {
+    name: String,
+    path: Path,
+    /// Ψ only (`psi`, the line-search path).
+    psi_tape: Tape,
+    /// Ψ and the generic derivatives (`spectral`).
+    full_tape: Tape,
+    psi_frozen: Vec<f64>,
+    full_frozen: Vec<f64>,
+    param_names: Vec<String>,
+    param_values: Vec<f64>,
+    info: EnergyInfo,
+    decoupled: bool,
+    sign_symmetric: bool,
+}
+
+/// Ψ values that mean "outside the domain" are reported as +∞.
+#[inline]
+fn domain(psi: f64) -> f64 {
+    if psi.is_nan() { f64::INFINITY } else { psi }
+}
+
+/// [I1, I2, I3] of the first D entries of σ.
+#[inline]
+fn invariants<const D: usize>(s: &[f64; D]) -> ([f64; 3], [f64; 3]) {
+    let mut s3 = [0.0; 3];
+    s3[..D].copy_from_slice(s);
+    let i1 = s.iter().sum();
+    let i2 = s.iter().map(|x| x * x).sum();
+    let i3 = s.iter().product();
+    (s3, [i1, i2, i3])
+}
+
+impl<const D: usize> InterpEnergy<D> {
+    /// Compile `ir` (which must be for dimension `D`) with parameter values
+    /// `params` (by index, as declared; see [`ecc_dsl::Module::param_defaults`]).
+    pub fn new(name: &str, ir: &DimIr, params: &[f64]) -> Result<Self, BuildError> {
+        if D != 2 && D != 3 {
+            return Err(BuildError::UnsupportedDim { dim: D });
+        }
+        if usize::from(ir.dim) != D {
+            return Err(BuildError::DimMismatch {
+                ir: ir.dim,
+                requested: D,
+            });
+        }
+        let g = &ir.graph;
+        let param_names = g.param_names().to_vec();
+        if params.len() != param_names.len() {
+            return Err(BuildError::ParamCount {
+                expected: param_names.len(),
+                found: params.len(),
+            });
+        }
+        if let Some((k, &v)) = params.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(BuildError::Param(ParamError::NotFinite {
+                name: param_names[k].clone(),
+                value: v,
+            }));
+        }
+        let mut roots = vec![ir.psi];
+        match ir.path {
+            Path::Invariant => {
+                let d = ir.d_inv.as_ref().ok_or(BuildError::MissingDerivatives {
+                    what: "invariant derivatives (d_inv)",
+                })?;
+                roots.extend_from_slice(&d.d1);
+                roots.extend_from_slice(&d.d2);
+            }
+            Path::Stretch => {
+                let rows_ok = ir.h_sigma.len() == D && ir.h_sigma.iter().all(|r| r.len() == D);
+                if ir.d_sigma.len() != D || !rows_ok {
+                    return Err(BuildError::MissingDerivatives {
+                        what: "stretch derivatives (d_sigma, h_sigma)",
+                    });
+                }
+                roots.extend_from_slice(&ir.d_sigma);
+                roots.extend(ir.h_sigma.iter().flatten().copied());
+            }
+        }
+        if let Some(bad) = roots.iter().find(|r| r.index() >= g.len()) {
+            return Err(BuildError::BadId { id: bad.0 });
+        }
+        // Trust `svd_free` only when Ψ really reads neither I1 nor σ.
+        let svd_free = ir.svd_free && !g.uses_sigma(ir.psi) && !g.may_depend(ir.psi, Sym::I1);
+        let psi_tape = Tape::compile(g, &[ir.psi]);
+        let full_tape = Tape::compile(g, &roots);
+        let psi_frozen = psi_tape.freeze(params);
+        let full_frozen = full_tape.freeze(params);
+        Ok(InterpEnergy {
+            name: name.to_string(),
+            path: ir.path,
+            psi_tape,
+            full_tape,
+            psi_frozen,
+            full_frozen,
+            param_names,
+            param_values: params.to_vec(),
+            info: EnergyInfo {
+                barrier: ir.barrier,
+                svd_free_psi: svd_free,
+            },
+            decoupled: ir.decoupled,
+            sign_symmetric: ir.sign_symmetric,
+        })
+    }
+
+    /// The differentiation path of the IR this energy was built from.
+    pub fn path(&self) -> Path {
+        self.path
+    }
+
+    /// The per-point tape computing Ψ and the generic derivatives (for cost reports).
+    pub fn full_tape(&self) -> &Tape {
+        &self.full_tape
+    }
+
+    fn psi_at(&self, sigma: [f64; 3], inv: [f64; 3]) -> f64 {
+        let mut out = [0.0];
+        self.psi_tape.eval(&self.psi_frozen, sigma, inv, &mut out);
+        domain(out[0])
+    }
+}
+
+impl<const D: usize> Energy<D> for InterpEnergy<D> {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn psi(&self, sigma: &[f64; D]) -> f64 {
+        let (s, inv) = invariants(sigma);
+        self.psi_at(s, inv)
+    }
+
+    fn spectral(&self, sigma: &[f64; D]) -> Spectral<D> {
+        let (s, inv) = invariants(sigma);
+        let mut out = [0.0; MAX_OUT];
+        let n = self.full_tape.n_outputs();
+        self.full_tape
+            .eval(&self.full_frozen, s, inv, &mut out[..n]);
+        let psi = domain(out[0]);
+        if psi == f64::INFINITY {
+            return Spectral::infinite();
+        }
+        match self.path {
+            Path::Invariant => {
+                let d1 = [out[1], out[2], out[3]];
+                let d2 = std::array::from_fn(|k| out[4 + k]);
+                spectral_from_invariants(sigma, psi, d1, d2, self.decoupled, self.sign_symmetric)
+            }
+            Path::Stretch => {
+                let grad = std::array::from_fn(|i| out[1 + i]);
+                let hess = std::array::from_fn(|i| std::array::from_fn(|j| out[1 + D + i * D + j]));
+                spectral_from_stretch(sigma, psi, grad, hess, self.sign_symmetric)
+            }
+        }
+    }
+
+    fn info(&self) -> EnergyInfo {
+        self.info
+    }
+
+    fn psi_i2_i3(&self, i2: f64, i3: f64) -> Option<f64> {
+        if !self.info.svd_free_psi {
+            return None;
+        }
+        Some(self.psi_at([f64::NAN; 3], [f64::NAN, i2, i3]))
+    }
+
+    fn params(&self) -> Vec<(String, f64)> {
+        self.param_names
+            .iter()
+            .cloned()
+            .zip(self.param_values.iter().copied())
+            .collect()
+    }
+
+    fn set_param(&mut self, name: &str, value: f64) -> Result<(), ParamError> {
+        let Some(k) = self.param_names.iter().position(|n| n == name) else {
+            return Err(ParamError::Unknown {
+                name: name.to_string(),
+                known: self.param_names.clone(),
+            });
+        };
+        if !value.is_finite() {
+            return Err(ParamError::NotFinite {
+                name: name.to_string(),
+                value,
+            });
+        }
+        self.param_values[k] = value;
+        self.psi_frozen = self.psi_tape.freeze(&self.param_values);
+        self.full_frozen = self.full_tape.freeze(&self.param_values);
+        Ok(())
+    }
+}
