@@ -215,13 +215,54 @@ fn library_derivatives_match_central_differences() {
     }
 }
 
+/// Energies outside the library that reach the remaining code paths:
+/// guarded twists on both paths, a parameterised exponent, mixed s/I.
+const EXTRA: &[(&str, &str)] = &[
+    (
+        "sqrt_stretch",
+        "psi = sqrt(1 + s1^2) + sqrt(1 + s2^2) + sqrt(1 + s3^2)",
+    ),
+    ("log_iic", "dim 3\npsi = log(IIC + 1)"),
+    (
+        "exp_i2",
+        "param k = 0.3\npsi = exp(k*(I2 - d)) + (I3 - 1)^2",
+    ),
+    (
+        "param_power",
+        "param a = 2.5\npsi = s1^a + s2^a + s3^a - 3 + (I3 - 1)^2",
+    ),
+    (
+        "mixed",
+        "dim 2\nlet J = s1*s2\npsi = (s1 - 1)^2 + (s2 - 1)^2 + IC*J^-2",
+    ),
+];
+
+#[test]
+fn extra_energies_match_central_differences() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for (name, src) in EXTRA {
+        let m = compile(src, name).unwrap_or_else(|d| panic!("{}", d.render(name, src)));
+        for ir in &m.dims {
+            check_dim(name, &m, ir, &mut rng);
+        }
+    }
+}
+
 #[test]
 fn flip_and_twist_limits_at_repeated_and_opposite_stretches() {
     // At σi = σj the flip must be finite and equal the limit of the divided
     // difference; at σi = −σj the same for the twist of sign-symmetric energies.
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    for name in LIBRARY {
-        let m = module(name);
+    let mods = LIBRARY
+        .iter()
+        .map(|n| (n.to_string(), module(n)))
+        .chain(EXTRA.iter().map(|(n, src)| {
+            (
+                n.to_string(),
+                compile(src, n).unwrap_or_else(|d| panic!("{}", d.render(n, src))),
+            )
+        }));
+    for (name, m) in mods {
         for ir in &m.dims {
             let ev = Eval {
                 ir,

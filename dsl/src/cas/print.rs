@@ -98,7 +98,7 @@ impl Graph {
                 }
             }
             Node::Add(children) => {
-                let mut terms: Vec<(i64, String, String)> = Vec::new();
+                let mut terms: Vec<(i64, Vec<(u8, String, i64)>, String)> = Vec::new();
                 let mut constant: Option<String> = None;
                 for c in children {
                     if let Node::Num(r) = self.get(*c) {
@@ -109,7 +109,7 @@ impl Graph {
                     let key = self.term_key(*c, memo);
                     terms.push((-p.degree, key, p.text));
                 }
-                terms.sort();
+                terms.sort_by(grlex);
                 let mut text = String::new();
                 let mut degree = 0;
                 let all = terms
@@ -238,19 +238,59 @@ impl Graph {
     }
 
     /// Sort key of a sum term: its text without the rational coefficient.
-    fn term_key(&self, t: Id, memo: &HashMap<Id, Printed>) -> String {
-        if let Node::Mul(children) = self.get(t) {
-            let parts: Vec<&str> = children
+    fn term_key(&self, t: Id, memo: &HashMap<Id, Printed>) -> Vec<(u8, String, i64)> {
+        let factors: Vec<Id> = match self.get(t) {
+            Node::Mul(children) => children
                 .iter()
-                .filter(|c| !matches!(self.get(**c), Node::Num(_)))
-                .map(|c| memo[c].text.as_str())
-                .collect();
-            let mut parts = parts;
-            parts.sort();
-            return parts.join("*");
-        }
-        memo[&t].text.clone()
+                .copied()
+                .filter(|c| !matches!(self.get(*c), Node::Num(_)))
+                .collect(),
+            _ => vec![t],
+        };
+        let mut key: Vec<(u8, String, i64)> = factors
+            .into_iter()
+            .map(|f| match self.get(f) {
+                Node::Pow([b, e]) => match self.as_num(*e).and_then(rat::as_i64) {
+                    Some(n) => (self.rank(*b), memo[b].text.clone(), n),
+                    None => (self.rank(f), memo[&f].text.clone(), 1),
+                },
+                _ => (self.rank(f), memo[&f].text.clone(), 1),
+            })
+            .collect();
+        key.sort();
+        key
     }
+}
+
+/// Graded lexicographic order of sum terms: higher degree first, then the
+/// larger power of the earliest symbol first (`s1^3 + s1^2*s2 + s1*s2^2 + s2^3`).
+fn grlex(
+    a: &(i64, Vec<(u8, String, i64)>, String),
+    b: &(i64, Vec<(u8, String, i64)>, String),
+) -> std::cmp::Ordering {
+    a.0.cmp(&b.0).then_with(|| {
+        let (mut i, mut j) = (0, 0);
+        let (x, y) = (&a.1, &b.1);
+        while i < x.len() && j < y.len() {
+            let (ka, kb) = ((x[i].0, &x[i].1), (y[j].0, &y[j].1));
+            match ka.cmp(&kb) {
+                std::cmp::Ordering::Equal => {
+                    if x[i].2 != y[j].2 {
+                        return y[j].2.cmp(&x[i].2);
+                    }
+                    i += 1;
+                    j += 1;
+                }
+                // `a` has a symbol earlier in the order that `b` lacks.
+                std::cmp::Ordering::Less => return std::cmp::Ordering::Less,
+                std::cmp::Ordering::Greater => return std::cmp::Ordering::Greater,
+            }
+        }
+        (x.len() - i)
+            .cmp(&(y.len() - j))
+            .reverse()
+            .then_with(|| a.2.cmp(&b.2))
+    })
 }
 
 fn print_num(r: &BigRational) -> Printed {
