@@ -24,6 +24,9 @@ enum Prec {
     Atom = 4,
 }
 
+/// A sum term for sorting: (−degree, monomial key, text).
+type SumTerm = (i64, Vec<(u8, String, i64)>, String);
+
 #[derive(Clone)]
 struct Printed {
     text: String,
@@ -98,7 +101,7 @@ impl Graph {
                 }
             }
             Node::Add(children) => {
-                let mut terms: Vec<(i64, Vec<(u8, String, i64)>, String)> = Vec::new();
+                let mut terms: Vec<SumTerm> = Vec::new();
                 let mut constant: Option<String> = None;
                 for c in children {
                     if let Node::Num(r) = self.get(*c) {
