@@ -176,6 +176,8 @@ fn nothing_panics_on_garbage() {
     let long = format!("psi = {}", vec!["I1"; 20000].join(" + "));
     let m = compile(&long, "long").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(m.dims[0].graph.to_text(m.dims[0].psi), "20000*I1");
+    let digits = format!("psi = {}*I1", "9".repeat(100_000));
+    assert!(compile(&digits, "digits").is_err());
     let negs = format!("psi = {}I1", "-".repeat(100001));
     assert!(compile(&negs, "negs").is_ok());
 }

@@ -74,7 +74,8 @@ pub fn pow_rat(base: &BigRational, e: &BigRational) -> Option<BigRational> {
 }
 
 /// Parse a decimal literal (`12`, `0.25`, `.5`, `1e-3`, `2.5E+4`) exactly.
-/// `None` when the exponent is absurdly large (|exp| > 4096).
+/// `None` when the literal is absurdly large (more than 4096 digits or
+/// |exponent| > 4096).
 pub fn parse_decimal(text: &str) -> Option<BigRational> {
     let (mantissa, exp) = match text.find(['e', 'E']) {
         Some(i) => (&text[..i], text[i + 1..].parse::<i64>().ok()?),
@@ -84,6 +85,9 @@ pub fn parse_decimal(text: &str) -> Option<BigRational> {
         Some(i) => (&mantissa[..i], &mantissa[i + 1..]),
         None => (mantissa, ""),
     };
+    if int_part.len() + frac_part.len() > MAX_FOLD_EXPONENT as usize {
+        return None;
+    }
     let digits = format!("{int_part}{frac_part}");
     let digits = if digits.is_empty() {
         "0".to_string()

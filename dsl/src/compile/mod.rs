@@ -10,7 +10,7 @@ pub use cost::{cost, cost_many};
 pub use dim::slot_pairs;
 
 use crate::diag::{Diagnostics, Error};
-use crate::front::{lower, parse, sema};
+use crate::front::{lower, parse, sema, split};
 use crate::ir::{DimIr, Module, ParamDecl};
 use crate::span::Span;
 
@@ -40,7 +40,7 @@ fn front_end_partial(source: &str, free_params: bool) -> (sema::Program, Vec<Err
 
 /// The statement containing `span` (for "what was this failed statement?").
 fn failed_statement(source: &str, span: Span) -> std::ops::Range<usize> {
-    parse::split_statements(source)
+    split::split_statements(source)
         .into_iter()
         .find(|s| s.start <= span.start && span.start <= s.end)
         .map_or(0..0, |s| s.range())

@@ -4,3 +4,5 @@ pub mod ast;
 pub mod lower;
 pub mod parse;
 pub mod sema;
+pub mod split;
+mod suggest;
