@@ -136,6 +136,10 @@ pub enum PairIr {
     Exact(Id),
     /// Use `direct` unless |den| is tiny, then `limit`
     /// ((A_ii + A_jj)/2 ∓ A_ij); `den` is σi − σj (flip) or σi + σj (twist).
+    ///
+    /// `limit` is exact on the hyperplane and off by O(|den|) near it, while
+    /// `direct` loses about ε·|Ψ_σ|/|den| to cancellation, so a switch at
+    /// |den| ≈ √ε·(|σi| + |σj|) balances the two errors.
     Guarded {
         /// The divided difference as written.
         direct: Id,

@@ -56,6 +56,12 @@ pub enum Node {
     /// A product.
     Mul(Vec<Id>),
     /// `[base, exponent]`: base ^ exponent.
+    ///
+    /// Real-valued semantics (what [`Tape`](super::Tape) implements): an
+    /// integer exponent is an exact power (`powi`); a rational exponent p/q
+    /// with odd q is the real power, defined for negative bases
+    /// (`(-8)^(1/3) = -2`, `(-8)^(2/3) = 4`); `1/2` is `sqrt`; any other
+    /// exponent is `powf` (NaN for a negative base).
     Pow([Id; 2]),
     /// Natural logarithm.
     Log(Id),
