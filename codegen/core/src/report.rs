@@ -1,0 +1,168 @@
+//! The Markdown report (`ecc energy.psi --emit report`): derivatives, every
+//! eigenvalue expression in canonical form, which modes are closed-form,
+//! guarded or need an eigensolve, the decoupling proof and the singularities.
+
+use std::fmt::Write;
+
+use ecc_dsl::{DimIr, Module, PairIr, Path, ScaleIr};
+
+use crate::summary::{pair_label, params_line};
+
+/// The report of a compiled module, as Markdown.
+///
+/// Expressions are printed with the CAS's canonical printer (`s1` is σ₁,
+/// `I1 = s1 + s2 (+ s3)`, `I2 = s1² + s2² (+ s3²)`, `I3 = s1·s2 (·s3)`), so
+/// the text is deterministic.
+pub fn report_markdown(module: &Module, name: &str) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "# Energy `{name}`\n");
+    let _ = writeln!(out, "```text\n{}\n```\n", module.source.trim_end());
+    let _ = writeln!(out, "Parameters: {}.\n", params_line(module));
+    if module.dims.is_empty() {
+        let _ = writeln!(out, "The energy compiled for no dimension.\n");
+    }
+    for (d, why) in &module.skipped {
+        let _ = writeln!(out, "- {d}D not compiled: {why}");
+    }
+    if !module.skipped.is_empty() {
+        out.push('\n');
+    }
+    for d in &module.dims {
+        dim_section(&mut out, d);
+    }
+    out
+}
+
+fn code(d: &DimIr, id: ecc_dsl::Id) -> String {
+    format!("`{}`", d.graph.to_text(id))
+}
+
+fn yes(b: bool) -> &'static str {
+    if b { "yes" } else { "no" }
+}
+
+fn dim_section(out: &mut String, d: &DimIr) {
+    let n = d.dim as usize;
+    let _ = writeln!(out, "## {}D\n", d.dim);
+    let path = match d.path {
+        Path::Invariant => "invariant (Smith et al. 2019, §4 and App. D: Ψ(I1, I2, I3))",
+        Path::Stretch => "stretch (Zhu 2020: Ψ(σ), twist/flip as divided differences)",
+    };
+    let _ = writeln!(out, "| property | value |\n|---|---|");
+    let _ = writeln!(out, "| path | {path} |");
+    let _ = writeln!(out, "| barrier (keep det F > 0) | {} |", yes(d.barrier));
+    let _ = writeln!(out, "| SVD-free Ψ (I2, I3 only) | {} |", yes(d.svd_free));
+    let _ = writeln!(
+        out,
+        "| sign-symmetric ((σi, σj) → (−σj, −σi)) | {} |",
+        yes(d.sign_symmetric)
+    );
+    let _ = writeln!(out, "| scaling modes decoupled | {} |", yes(d.decoupled));
+    if d.isotropy_numeric_only {
+        let _ = writeln!(out, "| isotropy | checked numerically only (not proved) |");
+    }
+    out.push('\n');
+    let _ = writeln!(out, "### Energy\n\nΨ = {}\n", code(d, d.psi));
+    if let Some(inv) = &d.d_inv {
+        let _ = writeln!(out, "### Invariant derivatives\n");
+        let _ = writeln!(out, "| derivative | expression |\n|---|---|");
+        for (k, &id) in inv.d1.iter().enumerate() {
+            let _ = writeln!(out, "| ∂Ψ/∂I{} | {} |", k + 1, code(d, id));
+        }
+        let labels = ["I1 I1", "I2 I2", "I3 I3", "I1 I2", "I1 I3", "I2 I3"];
+        for (l, &id) in labels.iter().zip(&inv.d2) {
+            let _ = writeln!(out, "| ∂²Ψ/∂{l} | {} |", code(d, id));
+        }
+        out.push('\n');
+    }
+    let _ = writeln!(out, "### Gradient\n");
+    for (i, &g) in d.spectral.grad.iter().enumerate() {
+        let _ = writeln!(out, "- ∂Ψ/∂s{} = {}", i + 1, code(d, g));
+    }
+    out.push('\n');
+    let _ = writeln!(out, "### Scaling modes\n");
+    match &d.spectral.scale {
+        ScaleIr::Diagonal(a) => {
+            let _ = writeln!(
+                out,
+                "Every off-diagonal of A = ∂²Ψ/∂σ² was proved identically zero, so the \
+                 scaling modes are eigenvectors and their eigenvalues are closed-form \
+                 (no eigensolve):\n"
+            );
+            for (i, &x) in a.iter().enumerate() {
+                let _ = writeln!(
+                    out,
+                    "- λ_scale{} = A{}{} = {}",
+                    i + 1,
+                    i + 1,
+                    i + 1,
+                    code(d, x)
+                );
+            }
+        }
+        ScaleIr::Full(a) => {
+            let _ = writeln!(
+                out,
+                "A = ∂²Ψ/∂σ² is coupled: the runtime solves this {n}×{n} symmetric \
+                 eigenproblem for the scaling eigenvalues.\n"
+            );
+            for (i, row) in a.iter().enumerate() {
+                for (j, &x) in row.iter().enumerate().skip(i) {
+                    let _ = writeln!(out, "- A{}{} = {}", i + 1, j + 1, code(d, x));
+                }
+            }
+        }
+    }
+    out.push('\n');
+    let _ = writeln!(out, "### Twist and flip modes\n");
+    let _ = writeln!(
+        out,
+        "| mode | pair | form | eigenvalue |\n|---|---|---|---|"
+    );
+    for (kind, list) in [("twist", &d.spectral.twist), ("flip", &d.spectral.flip)] {
+        for (slot, pr) in list.iter().enumerate() {
+            let (i, j) = pair_label(d.dim, slot);
+            let pair = format!("(s{i}, s{j})");
+            match *pr {
+                PairIr::Exact(x) => {
+                    let _ = writeln!(out, "| {kind} | {pair} | closed form | {} |", code(d, x));
+                }
+                PairIr::Guarded { direct, limit, den } => {
+                    let _ = writeln!(
+                        out,
+                        "| {kind} | {pair} | guarded: direct | {} |",
+                        code(d, direct)
+                    );
+                    let _ = writeln!(
+                        out,
+                        "| {kind} | {pair} | guarded: limit when \\|{}\\| ≤ τ·max(\\|s{i}\\|, \\|s{j}\\|) | {} |",
+                        d.graph.to_text(den),
+                        code(d, limit)
+                    );
+                }
+            }
+        }
+    }
+    out.push('\n');
+    let _ = writeln!(
+        out,
+        "τ = ecc_runtime::divided::LIMIT_TOL ≈ 6.1e-6 (ε^(1/3)): the same switch as the runtime.\n"
+    );
+    let _ = writeln!(out, "### Singularities\n");
+    if d.singularities.is_empty() {
+        let _ = writeln!(
+            out,
+            "None: no denominator or logarithm in the spectral expressions.\n"
+        );
+    } else {
+        let _ = writeln!(
+            out,
+            "Denominators and logarithm arguments found in the spectral expressions \
+             (the energy or its eigenvalues are singular where they vanish):\n"
+        );
+        for &s in &d.singularities {
+            let _ = writeln!(out, "- {}", code(d, s));
+        }
+        out.push('\n');
+    }
+}
