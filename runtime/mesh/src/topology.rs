@@ -18,6 +18,42 @@ pub(crate) struct Side {
     pub to: usize,
 }
 
+/// Sort `items` by `(first(item), rest(item))`. When the `first` values
+/// are compact (at most a few times the item count) this is a counting
+/// sort on `first` followed by small per-bucket sorts, which is linear in
+/// practice; otherwise a plain comparison sort.
+pub(crate) fn sort_by_vertex<T: Copy, K: Ord>(
+    items: &mut Vec<T>,
+    first: impl Fn(&T) -> usize,
+    rest: impl Fn(&T) -> K,
+) {
+    let Some(max) = items.iter().map(&first).max() else {
+        return;
+    };
+    if max >= items.len().saturating_mul(4).saturating_add(1024) {
+        items.sort_unstable_by_key(|x| (first(x), rest(x)));
+        return;
+    }
+    let mut start = vec![0usize; max + 2];
+    for x in items.iter() {
+        start[first(x) + 1] += 1;
+    }
+    for v in 0..=max {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut out: Vec<T> = items.clone();
+    for x in items.iter() {
+        let f = first(x);
+        out[fill[f]] = *x;
+        fill[f] += 1;
+    }
+    for v in 0..=max {
+        out[start[v]..start[v + 1]].sort_unstable_by_key(&rest);
+    }
+    *items = out;
+}
+
 /// All triangle sides, sorted by undirected edge (then by face).
 pub(crate) fn sorted_sides(tris: &[[usize; 3]]) -> Vec<Side> {
     let mut sides = Vec::with_capacity(tris.len() * 3);
@@ -32,7 +68,7 @@ pub(crate) fn sorted_sides(tris: &[[usize; 3]]) -> Vec<Side> {
             });
         }
     }
-    sides.sort_unstable_by_key(|s| (s.key, s.face));
+    sort_by_vertex(&mut sides, |s| s.key[0], |s| (s.key[1], s.face));
     sides
 }
 
@@ -121,7 +157,7 @@ pub fn tet_boundary_faces(tets: &[[usize; 4]]) -> Vec<[usize; 3]> {
             faces.push((key, t, l));
         }
     }
-    faces.sort_unstable();
+    sort_by_vertex(&mut faces, |f| f.0[0], |f| (f.0[1], f.0[2], f.1, f.2));
     let mut out: Vec<(usize, usize)> = faces
         .chunk_by(|a, b| a.0 == b.0)
         .filter(|g| g.len() == 1)
@@ -152,21 +188,32 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 }
 
 /// Connected components of elements with `K` vertices each (triangles,
-/// tets, edges…).
+/// tets, edges…). Any index values are accepted.
 pub fn components<const K: usize>(elements: &[[usize; K]]) -> Components {
     let mut parent: Vec<usize> = (0..elements.len()).collect();
-    let mut owner: HashMap<usize, usize> = HashMap::with_capacity(elements.len());
-    for (e, el) in elements.iter().enumerate() {
-        for &v in el {
-            match owner.get(&v) {
-                Some(&o) => {
-                    let (a, b) = (find(&mut parent, o), find(&mut parent, e));
-                    if a != b {
-                        parent[a.max(b)] = a.min(b);
-                    }
+    let max = elements.iter().flatten().copied().max().unwrap_or(0);
+    // Dense vertex → first element table when the ids are compact (the
+    // usual case), a hash map otherwise.
+    if max < elements.len().saturating_mul(K).saturating_add(1024) {
+        let mut owner = vec![usize::MAX; max + 1];
+        for (e, el) in elements.iter().enumerate() {
+            for &v in el {
+                if owner[v] == usize::MAX {
+                    owner[v] = e;
+                } else {
+                    union(&mut parent, owner[v], e);
                 }
-                None => {
-                    owner.insert(v, e);
+            }
+        }
+    } else {
+        let mut owner: HashMap<usize, usize> = HashMap::with_capacity(elements.len());
+        for (e, el) in elements.iter().enumerate() {
+            for &v in el {
+                match owner.get(&v) {
+                    Some(&o) => union(&mut parent, o, e),
+                    None => {
+                        owner.insert(v, e);
+                    }
                 }
             }
         }
@@ -185,6 +232,13 @@ pub fn components<const K: usize>(elements: &[[usize; K]]) -> Components {
     Components {
         count,
         element_component,
+    }
+}
+
+fn union(parent: &mut [usize], a: usize, b: usize) {
+    let (a, b) = (find(parent, a), find(parent, b));
+    if a != b {
+        parent[a.max(b)] = a.min(b);
     }
 }
 
@@ -254,6 +308,26 @@ mod tests {
         }
         // Two tets sharing face {1,2,3}: 6 boundary faces.
         assert_eq!(tet_boundary_faces(&[[0, 1, 2, 3], [4, 1, 3, 2]]).len(), 6);
+    }
+
+    #[test]
+    fn bucket_sort_matches_comparison_sort() {
+        let mut rng = 17u64;
+        let mut next = |m: u64| {
+            rng = rng.wrapping_mul(6364136223846793005).wrapping_add(1);
+            ((rng >> 33) % m) as usize
+        };
+        for spread in [10u64, 1 << 40] {
+            let items: Vec<(usize, usize)> = (0..500).map(|_| (next(spread), next(7))).collect();
+            let mut a = items.clone();
+            sort_by_vertex(&mut a, |x| x.0, |x| x.1);
+            let mut b = items;
+            b.sort_unstable();
+            assert_eq!(a, b);
+        }
+        let mut empty: Vec<(usize, usize)> = Vec::new();
+        sort_by_vertex(&mut empty, |x| x.0, |x| x.1);
+        assert!(empty.is_empty());
     }
 
     #[test]

@@ -1,9 +1,8 @@
 //! Checks shared by triangle and tet validation.
 
-use std::collections::HashMap;
-
 use crate::error::ValidationError;
 use crate::geometry::bbox_diagonal;
+use crate::topology::sort_by_vertex;
 
 /// Indices in range and no repeated vertex inside an element.
 pub(crate) fn check_indices<const K: usize>(
@@ -34,16 +33,26 @@ pub(crate) fn check_indices<const K: usize>(
 pub(crate) fn check_duplicates<const K: usize>(
     elements: &[[usize; K]],
 ) -> Result<(), ValidationError> {
-    let mut seen: HashMap<[usize; K], usize> = HashMap::with_capacity(elements.len());
-    for (e, el) in elements.iter().enumerate() {
-        let mut key = *el;
-        key.sort_unstable();
-        if let Some(&first) = seen.get(&key) {
-            return Err(ValidationError::DuplicateElement { element: e, first });
-        }
-        seen.insert(key, e);
+    let mut keys: Vec<([usize; K], usize)> = elements
+        .iter()
+        .enumerate()
+        .map(|(e, el)| {
+            let mut key = *el;
+            key.sort_unstable();
+            (key, e)
+        })
+        .collect();
+    sort_by_vertex(&mut keys, |k| k.0[0], |k| (k.0, k.1));
+    // Report the smallest later element id that repeats an earlier one.
+    let dup = keys
+        .chunk_by(|a, b| a.0 == b.0)
+        .filter(|g| g.len() > 1)
+        .map(|g| (g[1].1, g[0].1))
+        .min();
+    match dup {
+        Some((element, first)) => Err(ValidationError::DuplicateElement { element, first }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 /// Which vertices are used by some element.

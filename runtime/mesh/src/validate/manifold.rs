@@ -2,7 +2,7 @@
 //! of tet meshes.
 
 use crate::error::ValidationError;
-use crate::topology::{Side, TET_FACES};
+use crate::topology::{Side, TET_FACES, sort_by_vertex};
 
 /// Edges with more than two triangles, and (when `oriented`) interior
 /// edges traversed twice in the same direction.
@@ -117,7 +117,7 @@ pub(crate) fn check_tet_faces(tets: &[[usize; 4]]) -> Result<(), ValidationError
             faces.push((key, t));
         }
     }
-    faces.sort_unstable();
+    sort_by_vertex(&mut faces, |f| f.0[0], |f| (f.0[1], f.0[2], f.1));
     for group in faces.chunk_by(|a, b| a.0 == b.0) {
         if group.len() > 2 {
             return Err(ValidationError::NonManifoldFace {
