@@ -2,7 +2,7 @@
 //! and of generating the large benchmark grids.
 //!
 //! `cargo run --release -p ecc-mesh --example mesh_timing [DATA_DIR]`
-//! (DATA_DIR defaults to `$ECC_DATA_DIR` or `/work/shared/data`).
+//! (DATA_DIR defaults to `$ECC_DATA_DIR` or the repository's `data/`).
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -15,9 +15,8 @@ use ecc_mesh::{
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let dir = std::env::args_os()
         .nth(1)
-        .or_else(|| std::env::var_os("ECC_DATA_DIR"))
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/work/shared/data"));
+        .unwrap_or_else(ecc_mesh::data_dir);
     let strict = ValidationOptions {
         require_manifold: true,
         require_oriented: true,

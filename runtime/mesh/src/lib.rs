@@ -86,6 +86,7 @@
 //! assert!(uv.iter().all(|p| p[0].hypot(p[1]) <= 1.0 + 1e-12));
 //! ```
 
+pub mod data;
 pub mod error;
 pub mod generate;
 pub mod geometry;
@@ -95,6 +96,7 @@ pub mod tutte;
 pub mod types;
 pub mod validate;
 
+pub use data::{data_dir, data_file};
 pub use error::{MeshError, ParseError, TutteError, ValidationError};
 pub use generate::{
     bar_tet, box_tet, box_tet_with_at_least, disk_tri, grid_tri, grid_tri_with_at_least,

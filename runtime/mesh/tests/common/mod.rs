@@ -3,12 +3,9 @@
 
 use std::path::PathBuf;
 
-/// The public test meshes: `$ECC_DATA_DIR`, default `/work/shared/data`.
+/// The public test meshes: `$ECC_DATA_DIR`, default the repository's `data/`.
 pub fn data(name: &str) -> PathBuf {
-    let dir = std::env::var_os("ECC_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/work/shared/data"));
-    let path = dir.join(name);
+    let path = ecc_mesh::data_file(name);
     assert!(
         path.exists(),
         "test mesh {} is missing (set ECC_DATA_DIR to the folder with SOURCES.md)",
