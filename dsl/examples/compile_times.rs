@@ -33,6 +33,15 @@ fn main() {
             .unwrap_or_default();
         let src = std::fs::read_to_string(&f).unwrap_or_default();
         let dims = match ecc_dsl::compile(&src, &name) {
+            Ok(m) if std::env::var_os("ECC_BUDGET").is_some() => {
+                let used = ecc_dsl::poly::WORK_BUDGET - ecc_dsl::poly::budget_left();
+                eprintln!("{name}: polynomial work of the last dimension {used}");
+                m.dims
+                    .iter()
+                    .map(|d| d.dim.to_string())
+                    .collect::<Vec<_>>()
+                    .join("+")
+            }
             Ok(m) => m
                 .dims
                 .iter()

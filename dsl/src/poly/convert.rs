@@ -58,8 +58,10 @@ pub struct Converter {
 }
 
 impl Converter {
-    /// A converter for expressions of `g` in dimension `dim`.
+    /// A converter for expressions of `g` in dimension `dim`. Arms this
+    /// thread's polynomial work budget ([`super::WORK_BUDGET`]).
     pub fn new(g: &Graph, dim: u8) -> Self {
+        super::set_budget(super::WORK_BUDGET);
         Converter {
             dim,
             nparams: g.param_names().len(),

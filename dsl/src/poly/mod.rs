@@ -7,5 +7,7 @@ mod polynomial;
 mod ratfun;
 
 pub use convert::{Converter, Proof, is_zero};
-pub use polynomial::{MAX_TERMS, Mono, Poly, TooBig, div_linear};
+pub use polynomial::{
+    MAX_TERMS, Mono, Poly, TooBig, WORK_BUDGET, budget_left, div_linear, set_budget,
+};
 pub use ratfun::RatFun;

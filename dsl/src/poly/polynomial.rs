@@ -19,9 +19,46 @@ pub type Mono = Vec<u32>;
 /// compile bounded in time.
 pub const MAX_TERMS: usize = 6000;
 
-/// The polynomial exceeded [`MAX_TERMS`].
+/// Largest coefficient (numerator + denominator bits) any polynomial may have.
+pub const MAX_COEFF_BITS: u64 = 1024;
+
+/// The polynomial exceeded [`MAX_TERMS`] or [`MAX_COEFF_BITS`], or the work
+/// budget ran out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TooBig;
+
+/// Coefficient operations allowed per [`set_budget`] (one compile of one
+/// dimension arms it once): beyond it every polynomial operation answers
+/// [`TooBig`], i.e. "unknown", which keeps adversarial inputs bounded in time
+/// (the standard library uses well under 1% of it).
+pub const WORK_BUDGET: u64 = 400_000;
+
+thread_local! {
+    static BUDGET: std::cell::Cell<u64> = const { std::cell::Cell::new(u64::MAX) };
+}
+
+/// Arm the per-thread work budget with `ops` coefficient operations.
+pub fn set_budget(ops: u64) {
+    BUDGET.with(|b| b.set(ops));
+}
+
+/// The remaining per-thread work budget.
+pub fn budget_left() -> u64 {
+    BUDGET.with(|b| b.get())
+}
+
+fn charge(ops: u64) -> Result<(), TooBig> {
+    BUDGET.with(|b| {
+        let left = b.get();
+        if left < ops {
+            b.set(0);
+            Err(TooBig)
+        } else {
+            b.set(left - ops);
+            Ok(())
+        }
+    })
+}
 
 /// A polynomial Σ c_m x^m with exact rational coefficients (never storing 0).
 #[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
@@ -163,6 +200,7 @@ impl Poly {
 
     /// `self + other`.
     pub fn add(&self, other: &Poly) -> Result<Poly, TooBig> {
+        charge(other.terms.len() as u64)?;
         let mut r = self.clone();
         for (m, c) in &other.terms {
             r.add_term(m.clone(), c.clone());
@@ -209,9 +247,13 @@ impl Poly {
 
     /// `self · other`.
     pub fn mul(&self, other: &Poly) -> Result<Poly, TooBig> {
-        if self.terms.len().saturating_mul(other.terms.len()) > MAX_TERMS * 64 {
+        let work = self.terms.len().saturating_mul(other.terms.len());
+        if work > MAX_TERMS * 64 {
             return Err(TooBig);
         }
+        // Big coefficients cost more (products and gcd reductions grow with size).
+        let words = 1 + (self.coeff_bits() + other.coeff_bits()) / 64;
+        charge((work as u64).saturating_mul(words * words))?;
         let mut r = Poly::zero();
         for (ma, ca) in &self.terms {
             for (mb, cb) in &other.terms {
@@ -238,8 +280,17 @@ impl Poly {
         Ok(result)
     }
 
+    /// The largest coefficient size in bits (numerator + denominator).
+    pub fn coeff_bits(&self) -> u64 {
+        self.terms
+            .values()
+            .map(|c| c.numer().bits() + c.denom().bits())
+            .max()
+            .unwrap_or(0)
+    }
+
     fn check(self) -> Result<Poly, TooBig> {
-        if self.terms.len() > MAX_TERMS {
+        if self.terms.len() > MAX_TERMS || self.coeff_bits() > MAX_COEFF_BITS {
             Err(TooBig)
         } else {
             Ok(self)
@@ -298,18 +349,33 @@ impl Poly {
     pub fn div_exact(&self, d: &Poly) -> Option<Poly> {
         let (dm, dc) = d.leading()?;
         let (dm, dc) = (dm.clone(), dc.clone());
-        let mut rem = self.clone();
-        let mut q = Poly::zero();
-        let mut steps = 0usize;
-        while let Some((m, c)) = rem.leading() {
-            steps += 1;
-            if steps > MAX_TERMS * 4 {
+        // A monomial divisor: divisible iff it divides every term.
+        if d.len() == 1 {
+            if self.terms.keys().any(|m| mono_div(m, &dm).is_none()) {
                 return None;
             }
+            let inv = dc.recip();
+            return Some(Poly {
+                terms: self
+                    .terms
+                    .iter()
+                    .filter_map(|(m, c)| Some((mono_div(m, &dm)?, c * &inv)))
+                    .collect(),
+            });
+        }
+        let mut rem = self.clone();
+        let mut q = Poly::zero();
+        while let Some((m, c)) = rem.leading() {
             let qm = mono_div(m, &dm)?;
             let qc = c / &dc;
-            let t = Poly::monomial(qc.clone(), &qm);
-            rem = rem.sub(&d.mul(&t).ok()?).ok()?;
+            charge(d.len() as u64).ok()?;
+            // rem -= qc·x^qm·d, in place.
+            for (k, x) in &d.terms {
+                rem.add_term(mono_mul(k, &qm), -(x * &qc));
+            }
+            if rem.len() > MAX_TERMS * 4 {
+                return None;
+            }
             q.add_term(qm, qc);
         }
         Some(q)

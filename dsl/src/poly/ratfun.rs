@@ -95,15 +95,26 @@ impl RatFun {
             self.den.clear();
             return Ok(());
         }
+        let content = self.num.monomial_content();
         for k in 0..self.den.len() {
-            loop {
-                if self.den[k].1 == 0 {
-                    break;
+            let (f, e) = &mut self.den[k];
+            if f.len() == 1 {
+                // A single variable x: cancel min(e, power of x in the numerator's content).
+                let var = f.leading().and_then(|(m, _)| m.iter().position(|x| *x > 0));
+                if let Some(v) = var {
+                    let c = content.get(v).copied().unwrap_or(0).min(*e);
+                    if c > 0 {
+                        *e -= c;
+                        self.num = self.num.div_mono(&Poly::unit_mono(v, c));
+                    }
                 }
-                match self.num.div_exact(&self.den[k].0) {
+                continue;
+            }
+            while *e > 0 {
+                match self.num.div_exact(f) {
                     Some(q) => {
                         self.num = q;
-                        self.den[k].1 -= 1;
+                        *e -= 1;
                     }
                     None => break,
                 }
