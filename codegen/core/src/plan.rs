@@ -106,6 +106,8 @@ pub(crate) struct Plan<'g> {
     active: Vec<Id>,
     place: HashMap<Id, Place>,
     bound: HashSet<Id>,
+    /// Nodes that other evaluated nodes read.
+    read_by_others: HashSet<Id>,
     /// Composite nodes equal to an invariant (Π σ = I3, Σ σ = I1).
     as_leaf: HashMap<Id, Sym>,
     /// Bound nodes whose code equals an earlier binding's.
@@ -143,6 +145,7 @@ impl<'g> Plan<'g> {
             active: Vec::new(),
             place: HashMap::new(),
             bound: HashSet::new(),
+            read_by_others: HashSet::new(),
             as_leaf: HashMap::new(),
             alias: HashMap::new(),
             names: HashMap::new(),
@@ -220,6 +223,7 @@ impl<'g> Plan<'g> {
             for c in self.operands(node) {
                 join_into(&mut place, c, &p);
                 users.entry(c).or_default().push(id);
+                self.read_by_others.insert(c);
             }
             if let Node::Pow([b, e]) = node
                 && g.as_num(*e).is_some_and(repeats_base)
@@ -287,9 +291,19 @@ impl<'g> Plan<'g> {
             used.insert(n.clone());
             self.leaf_names.insert(s, n);
         }
-        // Root names are claimed first, in root order.
+        // Root names are claimed first, in root order: Ψ always, other roots
+        // only when the value is theirs alone (a value shared by several
+        // slots or read by other values gets a name of its own below).
+        let mut root_count: HashMap<Id, usize> = HashMap::new();
         for r in roots {
-            if self.bound.contains(&r.id) && !self.names.contains_key(&r.id) {
+            *root_count.entry(r.id).or_default() += 1;
+        }
+        for r in roots {
+            let own = root_count[&r.id] == 1 && !self.read_by_others.contains(&r.id);
+            if (own || r.region == Region::Psi)
+                && self.bound.contains(&r.id)
+                && !self.names.contains_key(&r.id)
+            {
                 let n = unique(&r.name, &mut used);
                 self.names.insert(r.id, n);
             }

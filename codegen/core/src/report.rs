@@ -160,8 +160,23 @@ fn dim_section(out: &mut String, d: &DimIr) {
             "Denominators and logarithm arguments found in the spectral expressions \
              (the energy or its eigenvalues are singular where they vanish):\n"
         );
+        let guarded: Vec<ecc_dsl::Id> = d
+            .spectral
+            .twist
+            .iter()
+            .chain(&d.spectral.flip)
+            .filter_map(|p| match p {
+                PairIr::Guarded { den, .. } => Some(*den),
+                PairIr::Exact(_) => None,
+            })
+            .collect();
         for &s in &d.singularities {
-            let _ = writeln!(out, "- {}", code(d, s));
+            let note = if guarded.contains(&s) {
+                " (removable: a guarded divided difference switches to its limit here)"
+            } else {
+                ""
+            };
+            let _ = writeln!(out, "- {}{note}", code(d, s));
         }
         out.push('\n');
     }
