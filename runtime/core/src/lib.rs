@@ -24,6 +24,7 @@
 // Index loops mirror the maths (u_a[r]·w_b[n], pair slots) more clearly than iterators.
 #![allow(clippy::needless_range_loop)]
 
+mod assemble;
 pub mod divided;
 pub mod element;
 pub mod energies;

@@ -18,11 +18,9 @@
 //! for K nodes) and H_x = Bᵀ H B = Σ λ g gᵀ: no 9×12 matrix is ever formed.
 //! The F-space Hessian is the special case w_b = v_b.
 //!
-//! **Repeated eigenvalues.** If a value c ≠ 0 repeats (ARAP: six modes at 2),
-//! H = c·BᵀB + Σ_{λ≠c} (λ − c) g gᵀ with BᵀB = I_d ⊗ G, G_nm = Σ_b w_b,n w_b,m,
-//! which saves one rank-one update per repetition.
+//! The Hessians themselves are assembled by [`crate::assemble`], which avoids
+//! the eigensolve of the scaling block whenever filtering cannot change it.
 
-use crate::filter::Filter;
 use crate::spectral::{ScaleBlock, Spectral, pair_indices};
 use crate::sym::{sym2_eigen, sym3_eigen};
 use std::f64::consts::FRAC_1_SQRT_2;
@@ -85,24 +83,14 @@ impl<const D: usize> Modes<D> {
             flip: s.flip,
         }
     }
-
-    /// The same modes with every eigenvalue passed through `filter`.
-    pub fn filtered(&self, filter: Filter) -> Self {
-        let mut m = *self;
-        for x in m.scale_vals.iter_mut() {
-            *x = filter.apply(*x);
-        }
-        for k in 0..Spectral::<D>::PAIRS {
-            m.twist[k] = filter.apply(m.twist[k]);
-            m.flip[k] = filter.apply(m.flip[k]);
-        }
-        m
-    }
 }
 
 /// u ⊗ w in node-major layout: index n·D + r holds u[r]·w[n].
 #[inline(always)]
-fn outer<const D: usize, const K: usize, const N: usize>(u: &[f64; D], w: &[f64; K]) -> [f64; N] {
+pub(crate) fn outer<const D: usize, const K: usize, const N: usize>(
+    u: &[f64; D],
+    w: &[f64; K],
+) -> [f64; N] {
     let mut p = [0.0; N];
     for n in 0..K {
         for r in 0..D {
@@ -167,75 +155,4 @@ pub(crate) fn gradient_vec<const D: usize, const K: usize, const N: usize>(
         }
     }
     out
-}
-
-/// H = weight · Σ λ g gᵀ over the modes (see the module docs), exactly symmetric.
-#[inline]
-pub(crate) fn assemble<const D: usize, const K: usize, const N: usize>(
-    u: &[[f64; D]; D],
-    w: &[[f64; K]; D],
-    m: &Modes<D>,
-    weight: f64,
-) -> [[f64; N]; N] {
-    let nm = D * D;
-    let (mut vals, vecs) = mode_vectors::<D, K, N>(u, w, m);
-    for v in vals.iter_mut().take(nm) {
-        *v *= weight;
-    }
-    // Most repeated non-zero eigenvalue (exact equality).
-    let mut shift = 0.0;
-    let mut best = 0usize;
-    let zeros = vals[..nm].iter().filter(|&&x| x == 0.0).count();
-    for a in 0..nm {
-        if vals[a] != 0.0 {
-            let c = vals[..nm].iter().filter(|&&x| x == vals[a]).count();
-            if c > best {
-                best = c;
-                shift = vals[a];
-            }
-        }
-    }
-    if best < zeros + 2 {
-        shift = 0.0;
-    }
-    let mut h = [[0.0; N]; N];
-    if shift != 0.0 {
-        // shift · (I_D ⊗ G), G_nm = Σ_b w_b[n] w_b[m].
-        for n in 0..K {
-            for q in n..K {
-                let mut gnm = 0.0;
-                for wb in w.iter() {
-                    gnm += wb[n] * wb[q];
-                }
-                for r in 0..D {
-                    h[n * D + r][q * D + r] = shift * gnm;
-                }
-            }
-        }
-    }
-    let mut active = [0usize; 9];
-    let mut na = 0;
-    for a in 0..nm {
-        if vals[a] != shift {
-            active[na] = a;
-            na += 1;
-        }
-    }
-    for i in 0..N {
-        let mut row = h[i];
-        for &a in &active[..na] {
-            let ci = (vals[a] - shift) * vecs[a][i];
-            let g = &vecs[a];
-            for j in i..N {
-                row[j] += ci * g[j];
-            }
-        }
-        h[i] = row;
-    }
-    for i in 0..N {
-        for j in (i + 1)..N {
-            h[j][i] = h[i][j];
-        }
-    }
-    h
 }

@@ -7,8 +7,9 @@
 //! If the SVD is not finite (F had a NaN/∞ entry) the *filtered* Hessian and the
 //! gradient are zero; the raw Hessian is NaN.
 
+use crate::assemble::{Filtered, modal_sum};
 use crate::filter::Filter;
-use crate::modes::{Modes, assemble, gradient_vec, mode_vectors};
+use crate::modes::{Modes, gradient_vec, mode_vectors};
 use crate::spectral::Spectral;
 use crate::svd::Svd;
 use nalgebra::{Matrix4, SMatrix, SVector, Vector4};
@@ -39,8 +40,7 @@ fn hessian_f<const D: usize, const N: usize>(
     }
     let u = columns(&svd.u);
     let v = columns(&svd.v);
-    let m = Modes::new(s).filtered(filter);
-    assemble::<D, D, N>(&u, &v, &m, 1.0)
+    modal_sum::<D, D, N>(&u, &v, &Filtered::new(s, filter), 1.0)
 }
 
 fn eigen_f<const D: usize, const N: usize>(

@@ -27,16 +27,28 @@ pub fn sym2_eigen(a: f64, b: f64, c: f64) -> ([f64; 2], [[f64; 2]; 2]) {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return ([f64::NAN; 2], [[1.0, 0.0], [0.0, 1.0]]);
     }
+    let scale = a.abs().max(b.abs()).max(c.abs());
+    if scale == 0.0 {
+        return ([0.0; 2], [[1.0, 0.0], [0.0, 1.0]]);
+    }
+    let inv = 1.0 / scale;
+    let (v, z) = sym2_eigen_scaled(a * inv, b * inv, c * inv);
+    ([v[0] * scale, v[1] * scale], z)
+}
+
+/// [`sym2_eigen`] for finite entries of magnitude ≤ O(1) (no overflow guard).
+#[inline]
+fn sym2_eigen_scaled(a: f64, b: f64, c: f64) -> ([f64; 2], [[f64; 2]; 2]) {
     let m = 0.5 * (a + c);
     let h = 0.5 * (a - c);
-    let r = h.hypot(b);
+    let r = (h * h + b * b).sqrt();
     if r == 0.0 {
         return ([a, c], [[1.0, 0.0], [0.0, 1.0]]);
     }
     // Half-angle vector of (h, b)/r = (cos 2θ, sin 2θ): (cos θ, sin θ).
     let (x, y) = if h >= 0.0 { (h + r, b) } else { (b, r - h) };
-    let n = x.hypot(y);
-    let (cs, sn) = (x / n, y / n);
+    let n = 1.0 / (x * x + y * y).sqrt();
+    let (cs, sn) = (x * n, y * n);
     ([m + r, m - r], [[cs, sn], [-sn, cs]])
 }
 
@@ -86,8 +98,9 @@ fn mat_vec(a: &[[f64; 3]; 3], v: &[f64; 3]) -> [f64; 3] {
     [dot(&a[0], v), dot(&a[1], v), dot(&a[2], v)]
 }
 
-/// The core on a matrix whose largest entry has magnitude 1.
-fn sym3_eigen_scaled(a: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+/// The core on a matrix whose largest entry has magnitude of order 1 (the
+/// thresholds assume it; used directly by the SVD, whose FᵀF is pre-scaled).
+pub(crate) fn sym3_eigen_scaled(a: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
     let q = (a[0][0] + a[1][1] + a[2][2]) / 3.0;
     let p1 = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
     let d = [a[0][0] - q, a[1][1] - q, a[2][2] - q];
@@ -108,14 +121,14 @@ fn sym3_eigen_scaled(a: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
     let det_b = b00 * (b11 * b22 - b12 * b12) - b01 * (b01 * b22 - b12 * b02)
         + b02 * (b01 * b12 - b11 * b02);
     let r = (0.5 * det_b).clamp(-1.0, 1.0);
+    // With φ = acos(r)/3 ∈ [0, π/3], λ_max = q + 2p cos φ, λ_min = q + 2p cos(φ + 2π/3)
+    // and λ_mid = q + 2p cos(φ + 4π/3). The largest gap is above λ_mid exactly when
+    // cos(φ + 4π/3) ≤ 0, i.e. φ ≤ π/6, i.e. r ≥ 0: only one cosine is needed.
     let phi = r.acos() / 3.0;
-    let l_max = q + 2.0 * p * phi.cos();
-    let l_min = q + 2.0 * p * (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos();
-    let l_mid = 3.0 * q - l_max - l_min;
-    let iso = if l_max - l_mid >= l_mid - l_min {
-        l_max
+    let iso = if r >= 0.0 {
+        q + 2.0 * p * phi.cos()
     } else {
-        l_min
+        q + 2.0 * p * (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos()
     };
 
     // Eigenvector of the isolated eigenvalue: null vector of A − λI.
@@ -150,7 +163,7 @@ fn sym3_eigen_scaled(a: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
     // The 2×2 block of A in that complement, diagonalised by one Jacobi rotation.
     let aw1 = mat_vec(a, &w1);
     let aw2 = mat_vec(a, &w2);
-    let (ev, evec) = sym2_eigen(dot(&w1, &aw1), dot(&w1, &aw2), dot(&w2, &aw2));
+    let (ev, evec) = sym2_eigen_scaled(dot(&w1, &aw1), dot(&w1, &aw2), dot(&w2, &aw2));
     let y1 = [
         evec[0][0] * w1[0] + evec[0][1] * w2[0],
         evec[0][0] * w1[1] + evec[0][1] * w2[1],

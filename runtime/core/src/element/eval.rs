@@ -9,12 +9,13 @@
 //! non-finite deformed position gives ψ = NaN with zero gradient and Hessian.
 
 use super::rest::{TetRest, TriRest};
+use crate::assemble::{Filtered, expand_nodes, modal_sum};
 use crate::energy::Energy;
 use crate::filter::Filter;
-use crate::modes::{Modes, assemble, gradient_vec};
+use crate::modes::gradient_vec;
 use crate::point::columns;
 use crate::svd::signed_svd;
-use nalgebra::{Matrix2, Matrix3, SMatrix, SVector};
+use nalgebra::{ArrayStorage, Matrix2, Matrix3, SMatrix, SVector};
 
 /// Energy, gradient and (optionally) Hessian of one element, times its rest measure.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,7 +89,7 @@ pub fn tri_eval<E: Energy<2> + ?Sized>(
     want_hessian: bool,
 ) -> ElementEval<6> {
     let f = tri_f(rest, x);
-    element_eval::<2, 3, 6, E>(e, &f, &rest.dm_inv, rest.area, filter, want_hessian)
+    element_eval::<2, 3, 4, 6, E>(e, &f, &rest.dm_inv, rest.area, filter, want_hessian)
 }
 
 /// Energy, gradient and (if `want_hessian`) filtered Hessian of a tetrahedron.
@@ -100,12 +101,18 @@ pub fn tet_eval<E: Energy<3> + ?Sized>(
     want_hessian: bool,
 ) -> ElementEval<12> {
     let f = tet_f(rest, x);
-    element_eval::<3, 4, 12, E>(e, &f, &rest.dm_inv, rest.volume, filter, want_hessian)
+    element_eval::<3, 4, 9, 12, E>(e, &f, &rest.dm_inv, rest.volume, filter, want_hessian)
 }
 
-/// Shared kernel: D = dimension, K = D + 1 nodes, N = D·K.
+/// Shared kernel: D = dimension, K = D + 1 nodes, R = D·D, N = D·K.
 #[inline]
-fn element_eval<const D: usize, const K: usize, const N: usize, E: Energy<D> + ?Sized>(
+fn element_eval<
+    const D: usize,
+    const K: usize,
+    const R: usize,
+    const N: usize,
+    E: Energy<D> + ?Sized,
+>(
     e: &E,
     f: &SMatrix<f64, D, D>,
     dm_inv: &SMatrix<f64, D, D>,
@@ -144,8 +151,10 @@ fn element_eval<const D: usize, const K: usize, const N: usize, E: Energy<D> + ?
     });
     let grad = gradient_vec::<D, K, N>(&u, &w, &s.grad, measure);
     let hess = if want_hessian {
-        let h = assemble::<D, K, N>(&u, &w, &Modes::new(&s).filtered(filter), measure);
-        SMatrix::from_fn(|i, j| h[i][j])
+        // Nodes 1…K−1 only (w restricted to them), node 0 from the zero node-sums.
+        let wr: [[f64; D]; D] = std::array::from_fn(|b| std::array::from_fn(|n| w[b][n + 1]));
+        let hr = modal_sum::<D, D, R>(&u, &wr, &Filtered::new(&s, filter), measure);
+        SMatrix::from_array_storage(ArrayStorage(expand_nodes::<D, K, R, N>(&hr)))
     } else {
         SMatrix::zeros()
     };

@@ -9,8 +9,8 @@
 //!   ([`signed_svd2`]); no iteration, exact at repeated and zero σ.
 //! * 3×3: analytic eigenvectors of FᵀF (trigonometric eigenvalues, a
 //!   cross-product eigenvector for the best-separated eigenvalue, one exact
-//!   Jacobi rotation for the remaining 2×2 block), then a Givens QR of F V
-//!   that yields U as a product of exact rotations and σ = diag(R) with
+//!   Jacobi rotation for the remaining 2×2 block), then a Gram–Schmidt QR of F V
+//!   (U = [u_0, u_1, u_0 × u_1] ∈ SO(3)) with σ = diag(R) of
 //!   *absolute* accuracy ≈ ε‖F‖ even for tiny σ ([`signed_svd3`]).
 //!
 //! Non-finite input yields σ = NaN and U = V = I (never a panic).

@@ -1,15 +1,15 @@
-//! Signed SVD of a 3×3 matrix: analytic V from FᵀF, then a Givens QR of F V.
+//! Signed SVD of a 3×3 matrix: analytic V from FᵀF, then a Gram–Schmidt QR of F V.
 //!
 //! 1. F is scaled by a power of two so its largest entry lies in [1, 2)
 //!    (exact; keeps FᵀF away from overflow/underflow).
 //! 2. V = eigenvectors of FᵀF by [`crate::sym::sym3_eigen`] (descending
 //!    eigenvalues, det V = +1). Only the *directions* are used; the eigenvalues
 //!    σ² would lose the small σ to rounding.
-//! 3. B = F V is reduced to upper-triangular R by three Givens rotations
-//!    (zeroing B₁₀, B₂₀, B₂₁) whose angles make R₀₀, R₁₁ ≥ 0; U is their
-//!    product, so U ∈ SO(3) to rounding and det R = det F. With V exact, R is
-//!    diagonal; the off-diagonal residue (≈ ε‖F‖) is dropped, so
-//!    ‖F − U diag(σ) Vᵀ‖ ≈ ε‖F‖ and σ_i = R_ii carries det F's sign in R₂₂.
+//! 3. B = F V is factored B = U R by Gram–Schmidt on its first two columns
+//!    (re-orthogonalised when cancellation is severe) and u_2 = u_0 × u_1, so
+//!    U ∈ SO(3) to rounding, R₀₀, R₁₁ ≥ 0 and R₂₂ = u_2·b_2 has the sign of
+//!    det F. With V exact, R is diagonal; the off-diagonal residue (≈ ε‖F‖) is
+//!    dropped, so ‖F − U diag(σ) Vᵀ‖ ≈ ε‖F‖ with σ_i = R_ii.
 //!    If σ_1 ≪ σ_0 the trailing eigenvectors of FᵀF are unresolvable (their
 //!    eigenvalues sit below ε σ_0²) and R₁₂ is not negligible; the trailing
 //!    2×2 block of R then gets its own closed-form signed SVD.
@@ -18,7 +18,7 @@
 //!    columns so U, V stay in SO(3).
 
 use super::{Svd, non_finite, signed_svd2};
-use crate::sym::sym3_eigen;
+use crate::sym::sym3_eigen_scaled;
 use nalgebra::{Matrix2, Matrix3};
 
 /// Signed SVD of a 3×3 matrix (see the module docs for the algorithm).
@@ -47,39 +47,33 @@ pub fn signed_svd3(f: &Matrix3<f64>) -> Svd<3> {
             *x = *x * s1 * s2;
         }
     }
-    // FᵀF (symmetric, upper triangle suffices).
+    // FᵀF (symmetric; entries ≤ 12 after scaling, so no further scaling).
     let col = |j: usize| [fm[0][j], fm[1][j], fm[2][j]];
     let (c0, c1, c2) = (col(0), col(1), col(2));
-    let d = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let ftf = [
-        [d(&c0, &c0), d(&c0, &c1), d(&c0, &c2)],
-        [0.0, d(&c1, &c1), d(&c1, &c2)],
-        [0.0, 0.0, d(&c2, &c2)],
+        [dot(&c0, &c0), dot(&c0, &c1), dot(&c0, &c2)],
+        [dot(&c0, &c1), dot(&c1, &c1), dot(&c1, &c2)],
+        [dot(&c0, &c2), dot(&c1, &c2), dot(&c2, &c2)],
     ];
-    let (_, vcols) = sym3_eigen(&ftf);
+    let (_, mut vcols) = sym3_eigen_scaled(&ftf);
 
-    // B = F V, row-major.
-    let mut b = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            b[i][j] = d(&fm[i], &vcols[j]);
-        }
-    }
-    // Qᵀ accumulated as rows: start from I, apply the same row rotations as to B.
-    let mut qt = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    givens_rows(&mut b, &mut qt, 0, 1, 0);
-    givens_rows(&mut b, &mut qt, 0, 2, 0);
-    givens_rows(&mut b, &mut qt, 1, 2, 1);
-
-    let mut sigma = [b[0][0], b[1][1], b[2][2]];
-    // U = Q: column j of U is row j of Qᵀ.
-    let mut ucols = qt;
-    let mut vcols = vcols;
+    // Columns b_j = F v_j, then Gram–Schmidt: R is upper triangular with
+    // R₀₀ = ‖b_0‖ > 0, R₁₁ ≥ 0, and u_2 = u_0 × u_1 makes det U = +1, so
+    // R₂₂ = u_2·b_2 carries the sign of det F.
+    let fv = |v: &[f64; 3]| [dot(&fm[0], v), dot(&fm[1], v), dot(&fm[2], v)];
+    let (b0, b1, b2) = (fv(&vcols[0]), fv(&vcols[1]), fv(&vcols[2]));
+    let r00 = dot(&b0, &b0).sqrt();
+    let u0 = scale3(&b0, 1.0 / r00);
+    let u1 = orthonormal_against(&u0, &b1, r00);
+    let u2 = cross(&u0, &u1);
+    let r12 = dot(&u1, &b2);
+    let mut sigma = [r00, dot(&u1, &b1), dot(&u2, &b2)];
+    let mut ucols = [u0, u1, u2];
     // When σ_1 ≪ σ_0, FᵀF cannot resolve the trailing eigenvectors (their
     // eigenvalues are below ε σ_0²) and R keeps a significant R₁₂: finish with
     // the closed-form SVD of the trailing 2×2 block.
-    if b[1][2].abs() > TRAILING_TOL * b[0][0] {
-        trailing_2x2(&b, &mut sigma, &mut ucols, &mut vcols);
+    if r12.abs() > TRAILING_TOL * r00 {
+        trailing_2x2(sigma[1], r12, sigma[2], &mut sigma, &mut ucols, &mut vcols);
     }
     fix_order(&mut sigma, &mut ucols, &mut vcols);
     for s in sigma.iter_mut() {
@@ -99,12 +93,14 @@ const TRAILING_TOL: f64 = 4.0 * f64::EPSILON;
 /// Replace the trailing block [[R₁₁, R₁₂], [0, R₂₂]] by its signed SVD
 /// U₂ diag(s) V₂ᵀ and fold U₂, V₂ into columns 1, 2 of U and V.
 fn trailing_2x2(
-    b: &[[f64; 3]; 3],
+    r11: f64,
+    r12: f64,
+    r22: f64,
     sigma: &mut [f64; 3],
     u: &mut [[f64; 3]; 3],
     v: &mut [[f64; 3]; 3],
 ) {
-    let blk = Matrix2::new(b[1][1], b[1][2], 0.0, b[2][2]);
+    let blk = Matrix2::new(r11, r12, 0.0, r22);
     let s2 = signed_svd2(&blk);
     let mix = |cols: &mut [[f64; 3]; 3], r: &Matrix2<f64>| {
         let (c1, c2) = (cols[1], cols[2]);
@@ -123,7 +119,12 @@ fn trailing_2x2(
 /// (split so each stays a normal number even for subnormal or huge `big`;
 /// multiplying and dividing by them is exact).
 fn pow2_scale(big: f64) -> (f64, f64) {
-    let e = big.log2().floor() as i32;
+    let bits = (big.to_bits() >> 52) & 0x7ff;
+    let e = if bits == 0 {
+        big.log2().floor() as i32 // subnormal: rare, take the slow path
+    } else {
+        bits as i32 - 1023
+    };
     let half = e / 2;
     (exp2i(-half), exp2i(half - e))
 }
@@ -133,27 +134,49 @@ fn exp2i(k: i32) -> f64 {
     f64::from_bits(((k + 1023) as u64) << 52)
 }
 
-/// Apply the Givens rotation that zeroes `b[r1][c]` against `b[r0][c]` (making
-/// `b[r0][c]` = hypot ≥ 0) to rows r0, r1 of `b` and of `qt`.
 #[inline]
-fn givens_rows(b: &mut [[f64; 3]; 3], qt: &mut [[f64; 3]; 3], r0: usize, r1: usize, c: usize) {
-    let x = b[r0][c];
-    let y = b[r1][c];
-    let n2 = x * x + y * y;
-    if n2 == 0.0 {
-        return;
-    }
-    let inv = 1.0 / n2.sqrt();
-    let (cs, sn) = (x * inv, y * inv);
-    for m in [&mut *b, &mut *qt] {
-        for k in 0..3 {
-            let p = m[r0][k];
-            let q = m[r1][k];
-            m[r0][k] = cs * p + sn * q;
-            m[r1][k] = -sn * p + cs * q;
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline]
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+#[inline]
+fn scale3(a: &[f64; 3], s: f64) -> [f64; 3] {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+
+/// Unit vector along b − (u·b)u (u a unit vector, `r00` the scale of the
+/// problem). A second Gram–Schmidt pass runs when the first one cancelled more
+/// than 10⁻⁴ of b ("twice is enough"); if nothing is left (b ∥ u, rank ≤ 1),
+/// any unit vector orthogonal to u is returned.
+#[inline]
+fn orthonormal_against(u: &[f64; 3], b: &[f64; 3], r00: f64) -> [f64; 3] {
+    let c = dot(u, b);
+    let mut r = [b[0] - c * u[0], b[1] - c * u[1], b[2] - c * u[2]];
+    let mut n2 = dot(&r, &r);
+    if n2 <= 1e-8 * dot(b, b) {
+        let c2 = dot(u, &r);
+        r = [r[0] - c2 * u[0], r[1] - c2 * u[1], r[2] - c2 * u[2]];
+        n2 = dot(&r, &r);
+        if n2.is_nan() || n2 <= (f64::EPSILON * f64::EPSILON) * r00 * r00 {
+            // Rank ≤ 1: complete u to an orthonormal pair.
+            let w = if u[0].abs() > u[1].abs() {
+                [-u[2], 0.0, u[0]]
+            } else {
+                [0.0, u[2], -u[1]]
+            };
+            return scale3(&w, 1.0 / dot(&w, &w).sqrt());
         }
     }
-    b[r1][c] = 0.0;
+    scale3(&r, 1.0 / n2.sqrt())
 }
 
 /// Enforce |σ_0| ≥ |σ_1| ≥ |σ_2| with only σ_2 possibly negative, keeping
