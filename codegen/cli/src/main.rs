@@ -1,1 +1,47 @@
-fn main() {}
+//! The `ecc` binary: a thin dispatcher (see `CLI.md` for usage and the JSON
+//! contract). Each subcommand lives in its own module; every failure prints
+//! one clear message on stderr and exits non-zero.
+
+mod check;
+mod cli;
+mod emit;
+mod error;
+mod eval;
+mod input;
+mod json;
+mod output;
+mod point;
+mod source;
+
+use clap::Parser;
+
+use cli::{Cli, Command};
+use error::{CliError, EXIT_FAILURE};
+
+fn run(cli: &Cli) -> Result<(), CliError> {
+    match &cli.command {
+        Some(Command::Eval(args)) => eval::run(args),
+        Some(Command::Check(args)) => check::run(args),
+        None => emit::run(&cli.emit),
+    }
+}
+
+fn main() {
+    // A panic is a bug; report it as one line instead of a backtrace dump.
+    std::panic::set_hook(Box::new(|info| {
+        eprintln!("error: internal error (please report this bug): {info}");
+    }));
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
+    let code = match std::panic::catch_unwind(|| run(&cli)) {
+        Ok(Ok(())) => 0,
+        Ok(Err(e)) => {
+            eprintln!("{e}");
+            EXIT_FAILURE
+        }
+        Err(_) => 101,
+    };
+    std::process::exit(code);
+}

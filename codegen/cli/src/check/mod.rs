@@ -1,0 +1,211 @@
+//! `ecc check FILE.psi [--dim D] [--samples N] [--seed S] [--param NAME=VALUE]...`
+//!
+//! Verifies the interpreted eigensystem of any `.psi` energy at hard and
+//! random deformation gradients (see [`cases`]) against central differences
+//! and a numeric eigensolve (see [`compare`]), prints the worst error per
+//! case and per check, and fails (exit status 1) if any exceeds its tolerance.
+
+mod cases;
+mod compare;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use ecc_dsl::Path as IrPath;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+use crate::error::CliError;
+use crate::input::parse_params;
+use crate::output::print_stdout;
+use crate::point::{Ops, PointOps};
+use crate::source::{Loaded, load};
+use compare::Errors;
+
+/// Tolerances (relative, see [`compare`]) for gradient, Hessian, eigenvalues, projection.
+///
+/// Central differences (with Richardson extrapolation) are accurate to
+/// ≈1e-11 (gradient) and ≈1e-7 (Hessian) on the library energies, worst
+/// ≈2e-6 at σ = 1e3, so the first two leave room for hard points; the eigen
+/// checks compare two exact computations in floating point.
+pub const TOLERANCES: [f64; 4] = [1e-6, 1e-5, 1e-8, 1e-8];
+const CHECK_NAMES: [&str; 4] = ["gradient", "hessian", "eigenvalues", "projected"];
+
+/// Arguments of `ecc check`.
+#[derive(clap::Args, Debug)]
+pub struct CheckArgs {
+    /// The energy: a `.psi` file.
+    pub file: PathBuf,
+    /// Check only this dimension (default: every dimension the energy compiles for).
+    #[arg(long, value_name = "D", value_parser = clap::value_parser!(u8).range(2..=3))]
+    pub dim: Option<u8>,
+    /// Number of random deformation gradients (in addition to the hard cases).
+    #[arg(long, value_name = "N", default_value_t = 32)]
+    pub samples: usize,
+    /// Seed of the random deformation gradients and rotations.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Override a parameter (repeatable), e.g. --param mu=2.5.
+    #[arg(long = "param", value_name = "NAME=VALUE", allow_hyphen_values = true)]
+    pub params: Vec<String>,
+}
+
+/// Worst errors of one report row.
+#[derive(Default)]
+struct Row {
+    name: &'static str,
+    points: usize,
+    worst: [Option<f64>; 4],
+    /// Each distinct note with the number of points it applied to.
+    notes: Vec<(&'static str, usize)>,
+}
+
+impl Row {
+    fn add(&mut self, e: &Errors) {
+        self.points += 1;
+        let v = [e.gradient, e.hessian, e.eigenvalues, e.projected];
+        for (w, x) in self.worst.iter_mut().zip(v) {
+            if let Some(x) = x {
+                *w = Some(w.map_or(
+                    x,
+                    |m: f64| if x.is_nan() { f64::INFINITY } else { m.max(x) },
+                ));
+            }
+        }
+        if let Some(n) = e.note {
+            match self.notes.iter_mut().find(|(m, _)| *m == n) {
+                Some((_, c)) => *c += 1,
+                None => self.notes.push((n, 1)),
+            }
+        }
+    }
+}
+
+/// Run `ecc check`.
+pub fn run(args: &CheckArgs) -> Result<(), CliError> {
+    let params = parse_params(&args.params)?;
+    let loaded = load(&args.file)?;
+    let dims: Vec<u8> = match args.dim {
+        Some(d) => vec![d],
+        None => loaded.module.dims.iter().map(|d| d.dim).collect(),
+    };
+    let mut failures = 0;
+    let mut report = String::new();
+    for dim in dims {
+        let (text, failed) = match dim {
+            2 => check_dim::<2>(&loaded, &params, args)?,
+            _ => check_dim::<3>(&loaded, &params, args)?,
+        };
+        report.push_str(&text);
+        failures += failed;
+    }
+    print_stdout(&report)?;
+    if failures > 0 {
+        return Err(CliError::CheckFailed { failures });
+    }
+    Ok(())
+}
+
+fn check_dim<const D: usize>(
+    loaded: &Loaded,
+    params: &[(String, f64)],
+    args: &CheckArgs,
+) -> Result<(String, usize), CliError>
+where
+    Ops: PointOps<D>,
+{
+    let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
+    let sign_symmetric = loaded
+        .module
+        .dim(D as u8)
+        .is_some_and(|ir| ir.sign_symmetric);
+    let mut rng = ChaCha8Rng::seed_from_u64(args.seed ^ D as u64);
+    let mut rows: Vec<Row> = Vec::new();
+    for case in cases::cases::<D>(&mut rng, args.samples) {
+        let errors = compare::compare::<D>(&energy, &case.f, sign_symmetric);
+        match rows.iter_mut().find(|r| r.name == case.name) {
+            Some(r) => r.add(&errors),
+            None => {
+                let mut r = Row {
+                    name: case.name,
+                    ..Row::default()
+                };
+                r.add(&errors);
+                rows.push(r);
+            }
+        }
+    }
+    let path = match energy.path() {
+        IrPath::Invariant => "invariant",
+        IrPath::Stretch => "stretch",
+    };
+    let points: usize = rows.iter().map(|r| r.points).sum();
+    Ok(render(loaded, D, path, points, &rows))
+}
+
+fn cell(x: Option<f64>, tol: f64) -> String {
+    match x {
+        None => format!("{:>12}", "-"),
+        Some(v) if v.is_finite() && v <= tol => format!("{v:>12.2e}"),
+        Some(v) => format!("{:>12}", format!("{v:.2e}!")),
+    }
+}
+
+fn render(loaded: &Loaded, dim: usize, path: &str, points: usize, rows: &[Row]) -> (String, usize) {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "ecc check {} ({}D, {} path, {} points; relative errors, `-` = skipped, `!` = above tolerance)",
+        loaded.shown, dim, path, points
+    );
+    let _ = writeln!(
+        s,
+        "{:<22}{:>12}{:>12}{:>12}{:>12}  note",
+        "case", CHECK_NAMES[0], CHECK_NAMES[1], CHECK_NAMES[2], CHECK_NAMES[3]
+    );
+    let mut worst = [None::<f64>; 4];
+    for r in rows {
+        let label = if r.points > 1 {
+            format!("{} ({})", r.name, r.points)
+        } else {
+            r.name.to_string()
+        };
+        let _ = write!(s, "{label:<22}");
+        for k in 0..4 {
+            let _ = write!(s, "{}", cell(r.worst[k], TOLERANCES[k]));
+            if let Some(v) = r.worst[k] {
+                let v = if v.is_nan() { f64::INFINITY } else { v };
+                worst[k] = Some(worst[k].map_or(v, |m: f64| m.max(v)));
+            }
+        }
+        let notes: Vec<String> = r
+            .notes
+            .iter()
+            .map(|(n, c)| {
+                if r.points > 1 {
+                    format!("{n} ({c} of {})", r.points)
+                } else {
+                    n.to_string()
+                }
+            })
+            .collect();
+        let _ = writeln!(s, "  {}", notes.join("; "));
+    }
+    let _ = write!(s, "{:<22}", "worst");
+    let mut failed = 0;
+    for k in 0..4 {
+        let _ = write!(s, "{}", cell(worst[k], TOLERANCES[k]));
+        if worst[k].is_some_and(|v| !v.is_finite() || v > TOLERANCES[k]) {
+            failed += 1;
+        }
+    }
+    let _ = writeln!(s);
+    let _ = write!(s, "{:<22}", "tolerance");
+    for t in TOLERANCES {
+        let _ = write!(s, "{t:>12.0e}");
+    }
+    let _ = writeln!(s);
+    let verdict = if failed == 0 { "PASS" } else { "FAIL" };
+    let _ = writeln!(s, "result: {verdict}\n");
+    (s, failed)
+}

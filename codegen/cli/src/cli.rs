@@ -1,0 +1,35 @@
+//! The command line (clap). Each subcommand's arguments live in its module.
+
+use clap::{Parser, Subcommand};
+
+use crate::check::CheckArgs;
+use crate::emit::EmitArgs;
+use crate::eval::EvalArgs;
+
+/// ecc: exact, PSD-projected eigensystems for isotropic energies written as formulas.
+#[derive(Parser, Debug)]
+#[command(
+    name = "ecc",
+    version,
+    arg_required_else_help = true,
+    args_conflicts_with_subcommands = true,
+    subcommand_negates_reqs = true,
+    after_help = "Examples:\n  ecc dsl/energies/snh.psi --emit rs -o snh.rs\n  ecc dsl/energies/sd3.psi --emit report\n  ecc eval dsl/energies/arap.psi --dim 2 --F \"1.2 0.1; 0 0.9\" --json\n  ecc check dsl/energies/ogden.psi --samples 64"
+)]
+pub struct Cli {
+    /// A subcommand; without one, `ecc FILE.psi --emit rs|report`.
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// The emit form's arguments.
+    #[command(flatten)]
+    pub emit: EmitArgs,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Evaluate Ψ, the gradient, raw/projected Hessian and eigenvalues at one F.
+    Eval(EvalArgs),
+    /// Check the eigensystem against central differences and a numeric eigensolve.
+    Check(CheckArgs),
+}

@@ -1,0 +1,82 @@
+//! Writing results: to standard output, or atomically to a file (`-o`).
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::error::CliError;
+
+/// Print `text` to standard output, or write it to `path` atomically.
+pub fn emit(path: Option<&Path>, text: &str) -> Result<(), CliError> {
+    match path {
+        Some(p) => write_atomic(p, text.as_bytes()).map_err(|e| CliError::Write {
+            path: p.display().to_string(),
+            message: e.to_string(),
+        }),
+        None => print_stdout(text),
+    }
+}
+
+/// Print `text` (plus a final newline if missing) to standard output.
+pub fn print_stdout(text: &str) -> Result<(), CliError> {
+    let mut out = std::io::stdout().lock();
+    let res = out.write_all(text.as_bytes()).and_then(|_| {
+        if text.ends_with('\n') {
+            Ok(())
+        } else {
+            out.write_all(b"\n")
+        }
+    });
+    res.and_then(|_| out.flush())
+        .map_err(|e| CliError::Stdout(e.to_string()))
+}
+
+/// Write `bytes` to `path` atomically: a temporary file in the same
+/// directory is written, flushed to disk and renamed over `path`, so readers
+/// never see a partial file and a failure leaves any old file untouched.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let file_name = path.file_name().ok_or_else(|| {
+        std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "the path has no file name",
+        )
+    })?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(file_name);
+    tmp_name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = dir.join(tmp_name);
+    let result = (|| {
+        let mut f = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn atomic_write_replaces_and_cleans_up() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("out.txt");
+        write_atomic(&p, b"one").unwrap();
+        write_atomic(&p, b"two").unwrap();
+        assert_eq!(std::fs::read_to_string(&p).unwrap(), "two");
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+        assert_eq!(names.len(), 1, "no temporary file left behind");
+        let missing = dir.path().join("no/such/dir/out.txt");
+        assert!(write_atomic(&missing, b"x").is_err());
+    }
+}
