@@ -1,11 +1,13 @@
 //! Rust tokens → energy-language text, remembering where each token went.
 //!
-//! Tokens are printed separated by one space (a `Joint` punctuation is glued
-//! to the next one, so `**` stays `**` and is reported as the syntax error
-//! it is). Parentheses are kept; other delimiters are printed too, so that
-//! the energy language reports them. Each token's byte range in the text is
-//! recorded with its span, so that an error at DSL bytes `a..b` can be
-//! reported at the Rust tokens covering them.
+//! The text reads like hand-written energy code (`mu/2*(IC - d)`): binary
+//! `+`, `-` and `=` are spaced, `*`, `/`, `^`, unary signs, calls and
+//! parentheses are not, and each `;` ends a line. A `Joint` punctuation is
+//! glued to the next one, so `**` stays `**` and is reported as the syntax
+//! error it is; brackets and braces are printed too, so that the energy
+//! language reports them. Each token's byte range in the text is recorded
+//! with its span, so that an error at DSL bytes `a..b` can be reported at
+//! the Rust tokens covering them.
 
 use std::ops::Range;
 
@@ -15,6 +17,18 @@ use proc_macro2::{Delimiter, Spacing, Span, TokenStream, TokenTree};
 pub(crate) struct Text {
     pub text: String,
     spans: Vec<(Range<usize>, Span)>,
+    /// The previous token's text ("" at the start).
+    prev: String,
+    /// The previous token was a unary sign or a `Joint` punctuation.
+    glue_next: bool,
+}
+
+/// Tokens after which a `+`/`-` is a sign, not a binary operator.
+fn opens_operand(prev: &str) -> bool {
+    matches!(
+        prev,
+        "" | "(" | "[" | "{" | "," | ";" | "=" | "+" | "-" | "*" | "/" | "^"
+    )
 }
 
 impl Text {
@@ -23,30 +37,41 @@ impl Text {
         let mut t = Text {
             text: String::new(),
             spans: Vec::new(),
+            prev: String::new(),
+            glue_next: false,
         };
-        let mut glue = false;
-        t.push_stream(tokens, &mut glue);
+        t.push_stream(tokens);
         t
     }
 
-    fn push(&mut self, s: &str, span: Span, glue: &mut bool, joint: bool) {
-        if !self.text.is_empty() && !*glue {
+    fn push(&mut self, s: &str, span: Span, joint: bool) {
+        let tight = matches!(s, ")" | "]" | "}" | "," | ";" | "*" | "/" | "^")
+            || matches!(self.prev.as_str(), "(" | "[" | "{" | "*" | "/" | "^")
+            || (s == "("
+                && self
+                    .prev
+                    .starts_with(|c: char| c.is_alphabetic() || c == '_'));
+        if self.prev == ";" {
+            self.text.push('\n');
+        } else if !self.text.is_empty() && !self.glue_next && !tight {
             self.text.push(' ');
         }
         let start = self.text.len();
         self.text.push_str(s);
         self.spans.push((start..self.text.len(), span));
-        *glue = joint;
+        let sign = matches!(s, "+" | "-") && opens_operand(&self.prev);
+        self.glue_next = joint || sign;
+        self.prev = if sign { "^".to_string() } else { s.to_string() };
     }
 
-    fn push_stream(&mut self, tokens: TokenStream, glue: &mut bool) {
+    fn push_stream(&mut self, tokens: TokenStream) {
         for tt in tokens {
             match tt {
-                TokenTree::Ident(i) => self.push(&i.to_string(), i.span(), glue, false),
-                TokenTree::Literal(l) => self.push(&l.to_string(), l.span(), glue, false),
+                TokenTree::Ident(i) => self.push(&i.to_string(), i.span(), false),
+                TokenTree::Literal(l) => self.push(&l.to_string(), l.span(), false),
                 TokenTree::Punct(p) => {
                     let joint = p.spacing() == Spacing::Joint;
-                    self.push(&p.as_char().to_string(), p.span(), glue, joint)
+                    self.push(&p.as_char().to_string(), p.span(), joint)
                 }
                 TokenTree::Group(g) => {
                     let (open, close) = match g.delimiter() {
@@ -56,11 +81,11 @@ impl Text {
                         Delimiter::None => ("", ""),
                     };
                     if !open.is_empty() {
-                        self.push(open, g.span_open(), glue, false);
+                        self.push(open, g.span_open(), false);
                     }
-                    self.push_stream(g.stream(), glue);
+                    self.push_stream(g.stream());
                     if !close.is_empty() {
-                        self.push(close, g.span_close(), glue, false);
+                        self.push(close, g.span_close(), false);
                     }
                 }
             }
@@ -93,16 +118,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn prints_tokens_with_single_spaces() {
+    fn prints_tokens_like_hand_written_text() {
         let ts: TokenStream = "I2 - 2*I1 + (s1^-2)".parse().unwrap_or_default();
         let t = Text::from_tokens(ts);
-        assert_eq!(t.text, "I2 - 2 * I1 + ( s1 ^- 2 )");
+        assert_eq!(t.text, "I2 - 2*I1 + (s1^-2)");
     }
 
     #[test]
     fn statements_keep_their_semicolons() {
         let ts: TokenStream = "param mu = 1.5; psi = mu*I2".parse().unwrap_or_default();
-        assert_eq!(Text::from_tokens(ts).text, "param mu = 1.5 ; psi = mu * I2");
+        assert_eq!(Text::from_tokens(ts).text, "param mu = 1.5;\npsi = mu*I2");
+        let ts: TokenStream = "mu/2*(IC - d) - -mu*log(IC + 1)"
+            .parse()
+            .unwrap_or_default();
+        assert_eq!(
+            Text::from_tokens(ts).text,
+            "mu/2*(IC - d) - -mu*log(IC + 1)"
+        );
     }
 
     #[test]
