@@ -1,10 +1,13 @@
 //! Fast assembly of filtered F-space and element Hessians from the modes.
 //!
-//! **Scaling block without an eigensolve when possible.** The scaling part of
-//! the Hessian is Σ_ij Â_ij d_i d_jᵀ with Â = filter(A) (filter applied to A's
+//! **Scaling block without a full eigensolve.** The scaling part of the
+//! Hessian is Σ_ij Â_ij d_i d_jᵀ with Â = filter(A) (filter applied to A's
 //! eigenvalues). Every filter leaves an eigenvalue ≥ its floor unchanged, so
-//! when A − floor·I is positive definite (checked by an LDLᵀ pivot test) Â = A
-//! and no 3×3 eigensolve is needed; the raw Hessian never needs one either.
+//! the number k of eigenvalues below the floor (the inertia of A − floor·I,
+//! from LDLᵀ pivots) decides: k = 0 → Â = A; otherwise at most one eigenpair —
+//! the best-separated one, from the trigonometric solution and a cross product —
+//! is needed (see `filter_block3`), with the full 3×3 eigensolve as fallback.
+//! The raw Hessian never needs an eigensolve.
 //!
 //! **Pairs.** λ_t t tᵀ + λ_l l lᵀ with t, l = (p_ji ∓ p_ij)/√2, p_ab = u_a ⊗ w_b.
 //!
@@ -23,6 +26,7 @@
 use crate::filter::Filter;
 use crate::modes::{Modes, outer};
 use crate::spectral::{ScaleBlock, Spectral, pair_indices};
+use crate::sym::isolated;
 
 /// The filtered stretch-space data needed for assembly.
 #[derive(Clone, Copy, Debug)]
@@ -37,24 +41,105 @@ pub(crate) struct Filtered<const D: usize> {
     pub flip: [f64; 3],
 }
 
-/// A − floor·I is positive definite (LDLᵀ pivots all > 0); false on NaN.
-fn positive_definite<const D: usize>(a: &[[f64; D]; D], floor: f64) -> bool {
+/// The inertia of A − floor·I: how many eigenvalues of A lie below `floor`,
+/// from the signs of the LDLᵀ pivots (Sylvester's law of inertia). `None` when a
+/// pivot vanishes or is not finite (no pivoting is done; callers then fall back
+/// to an eigensolve). A pivot within rounding of 0 may be mis-signed; that only
+/// happens when an eigenvalue is within rounding of `floor`, where clamping it
+/// or not changes Â by rounding only.
+fn below_floor<const D: usize>(a: &[[f64; D]; D], floor: f64) -> Option<usize> {
     let d0 = a[0][0] - floor;
-    if d0.is_nan() || d0 <= 0.0 {
-        return false;
+    if d0 == 0.0 || !d0.is_finite() {
+        return None;
     }
     let l10 = a[1][0] / d0;
     let d1 = a[1][1] - floor - a[1][0] * l10;
-    if d1.is_nan() || d1 <= 0.0 {
-        return false;
+    if d1 == 0.0 || !d1.is_finite() {
+        return None;
     }
-    if D == 2 {
-        return d1.is_finite() && d0.is_finite();
+    let mut neg = (d0 < 0.0) as usize + (d1 < 0.0) as usize;
+    if D == 3 {
+        let l20 = a[2][0] / d0;
+        let l21 = (a[2][1] - a[2][0] * l10) / d1;
+        let d2 = a[2][2] - floor - a[2][0] * l20 - l21 * l21 * d1;
+        if !d2.is_finite() {
+            return None;
+        }
+        neg += (d2 < 0.0) as usize;
     }
-    let l20 = a[2][0] / d0;
-    let l21 = (a[2][1] - a[2][0] * l10) / d1;
-    let d2 = a[2][2] - floor - a[2][0] * l20 - l21 * l21 * d1;
-    d2 > 0.0 && d2.is_finite() && d1.is_finite() && d0.is_finite()
+    Some(neg)
+}
+
+/// Â = filter(A) for a finite symmetric 3×3 A with at least one eigenvalue
+/// below the floor, needing at most one eigenpair. Every filter leaves the
+/// eigenvalues ≥ floor unchanged, so with k eigenvalues below it:
+///
+/// * k = 1 (λ_min, vector z): Â = A + (f(λ_min) − λ_min) z zᵀ;
+/// * k = 2 (λ_max ≥ floor, vector z): the other two are mapped together —
+///   Clamp: Â = λ_max z zᵀ; ClampEps(ε): Â = λ_max z zᵀ + ε(I − z zᵀ);
+///   Abs: Â = −A + 2λ_max z zᵀ (|·| of a negative definite part is its negation);
+/// * k = 3: Clamp 0, ClampEps εI, Abs −A.
+///
+/// The eigenpair used (λ_min for k = 1, λ_max for k = 2) is the one alone on
+/// its side of the floor, so its gap g to the nearest other eigenvalue is at
+/// least the correction |f(λ) − λ| (half of it for Abs) and the ≈ ε‖A‖/g error of
+/// its cross-product eigenvector costs at most ≈ 2ε‖A‖ in Â. It is used only
+/// when it is also the best-separated eigenpair (else `None`: full eigensolve).
+fn filter_block3(a: &[[f64; 3]; 3], filter: Filter) -> Option<[[f64; 3]; 3]> {
+    let floor = filter.floor();
+    let k = below_floor(a, floor)?;
+    let id = |i: usize, j: usize| if i == j { 1.0 } else { 0.0 };
+    let build = |g: &dyn Fn(usize, usize) -> f64| -> [[f64; 3]; 3] {
+        std::array::from_fn(|i| std::array::from_fn(|j| g(i, j)))
+    };
+    match k {
+        0 => Some(*a),
+        3 => Some(match filter {
+            Filter::Abs => build(&|i, j| -a[i][j]),
+            _ => build(&|i, j| floor * id(i, j)),
+        }),
+        _ => {
+            let iso = isolated(a)?;
+            let (l, z) = (iso.value, iso.vector);
+            if k == 1 && !iso.is_max {
+                let c = filter.apply(l) - l;
+                Some(build(&|i, j| a[i][j] + c * z[i] * z[j]))
+            } else if k == 2 && iso.is_max {
+                Some(match filter {
+                    Filter::Abs => build(&|i, j| -a[i][j] + 2.0 * l * z[i] * z[j]),
+                    _ => build(&|i, j| l * z[i] * z[j] + floor * (id(i, j) - z[i] * z[j])),
+                })
+            } else {
+                None
+            }
+        }
+    }
+}
+
+/// Â for a finite, symmetric block that the filter changes: the one-eigenpair
+/// update in 3D when it applies, else the full eigensolve (closed form in 2D).
+fn filter_block<const D: usize>(
+    a: &[[f64; D]; D],
+    s: &Spectral<D>,
+    filter: Filter,
+) -> [[f64; D]; D] {
+    if D == 3 {
+        let a3: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[i][j]));
+        if let Some(h) = filter_block3(&a3, filter) {
+            return std::array::from_fn(|i| std::array::from_fn(|j| h[i][j]));
+        }
+    }
+    let m = Modes::new(s);
+    let mut out = [[0.0; D]; D];
+    for (z, &lam) in m.scale_vecs.iter().zip(m.scale_vals.iter()) {
+        let l = filter.apply(lam);
+        for i in 0..D {
+            for j in 0..D {
+                out[i][j] += l * z[i] * z[j];
+            }
+        }
+    }
+    out
 }
 
 impl<const D: usize> Filtered<D> {
@@ -81,23 +166,14 @@ impl<const D: usize> Filtered<D> {
                     for i in 0..D {
                         scale[i][i] = filter.apply(a[i][i]);
                     }
-                } else if filter.is_raw() || positive_definite(a, filter.floor()) {
-                    for i in 0..D {
-                        for j in 0..D {
-                            scale[i][j] = 0.5 * (a[i][j] + a[j][i]);
-                        }
-                    }
-                    diagonal = false;
                 } else {
-                    let m = Modes::new(s);
-                    for (z, &lam) in m.scale_vecs.iter().zip(m.scale_vals.iter()) {
-                        let l = filter.apply(lam);
-                        for i in 0..D {
-                            for j in 0..D {
-                                scale[i][j] += l * z[i] * z[j];
-                            }
-                        }
-                    }
+                    let sym: [[f64; D]; D] =
+                        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (a[i][j] + a[j][i])));
+                    scale = if filter.is_raw() || below_floor(&sym, filter.floor()) == Some(0) {
+                        sym
+                    } else {
+                        filter_block(&sym, s, filter)
+                    };
                     diagonal = false;
                 }
             }
@@ -122,29 +198,31 @@ pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
 ) -> [[f64; R]; R] {
     debug_assert_eq!(R, D * M);
     let pairs = Spectral::<D>::PAIRS;
-    // Shift c: the most repeated non-zero value among the pair eigenvalues and,
-    // when Â is diagonal, its diagonal.
-    let mut cand = [0.0; 9];
+    // Shift c: a repeated non-zero value among the pair eigenvalues and, when Â
+    // is diagonal, its diagonal. Repeats come from energies whose Hessian is
+    // c·I plus a low-rank part (ARAP, co-rotational: flips = scales = 2μ), so
+    // only the first flip, twist and scale value are tried as candidates.
+    let mut vals = [0.0; 9];
     let mut nc = 0;
     for k in 0..pairs {
-        cand[nc] = f.twist[k];
-        cand[nc + 1] = f.flip[k];
+        vals[nc] = f.twist[k];
+        vals[nc + 1] = f.flip[k];
         nc += 2;
     }
     if f.diagonal {
         for i in 0..D {
-            cand[nc] = f.scale[i][i];
+            vals[nc] = f.scale[i][i];
             nc += 1;
         }
     }
     let mut shift = 0.0;
     let mut best = 1usize;
-    for a in 0..nc {
-        if cand[a] != 0.0 && cand[a].is_finite() {
-            let c = cand[..nc].iter().filter(|&&x| x == cand[a]).count();
-            if c > best {
-                best = c;
-                shift = cand[a];
+    for c in [f.flip[0], f.twist[0], f.scale[0][0]] {
+        if c != 0.0 && c.is_finite() {
+            let count = vals[..nc].iter().filter(|&&x| x == c).count();
+            if count > best {
+                best = count;
+                shift = c;
             }
         }
     }
@@ -284,4 +362,72 @@ pub(crate) fn expand_nodes<const D: usize, const K: usize, const R: usize, const
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Filtered;
+    use crate::filter::Filter;
+    use crate::spectral::{ScaleBlock, Spectral};
+    use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+
+    /// Deterministic pseudo-random numbers in [−1, 1) (no dev-dependency needed).
+    fn lcg(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+
+    /// Â from Filtered::new equals Q f(Λ) Qᵀ from nalgebra for spectra with every
+    /// count of eigenvalues below the floor, including near-repeated ones.
+    #[test]
+    fn scaling_block_filter_matches_numeric_reconstruction() {
+        let mut st = 7u64;
+        let filters = [Filter::Clamp, Filter::ClampEps(0.05), Filter::Abs];
+        for it in 0..20_000 {
+            // Random rotation from a normalised quaternion.
+            let q: [f64; 4] = std::array::from_fn(|_| lcg(&mut st));
+            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+            let (w, x, y, z) = (q[0] / n, q[1] / n, q[2] / n, q[3] / n);
+            let r = Matrix3::new(
+                1.0 - 2.0 * (y * y + z * z),
+                2.0 * (x * y - w * z),
+                2.0 * (x * z + w * y),
+                2.0 * (x * y + w * z),
+                1.0 - 2.0 * (x * x + z * z),
+                2.0 * (y * z - w * x),
+                2.0 * (x * z - w * y),
+                2.0 * (y * z + w * x),
+                1.0 - 2.0 * (x * x + y * y),
+            );
+            let mut l = Vector3::new(lcg(&mut st), lcg(&mut st), lcg(&mut st));
+            if it % 3 == 0 {
+                l[1] = l[0] + 1e-9 * lcg(&mut st); // near-repeated pair
+            }
+            let a = r * Matrix3::from_diagonal(&l) * r.transpose();
+            let a = (a + a.transpose()) * 0.5;
+            let arr: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| a[(i, j)]));
+            let s = Spectral::<3> {
+                psi: 0.0,
+                grad: [0.0; 3],
+                scale: ScaleBlock::Full(arr),
+                twist: [0.0; 3],
+                flip: [0.0; 3],
+            };
+            let eig = SymmetricEigen::new(a);
+            for f in filters {
+                let got = Filtered::new(&s, f).scale;
+                let fl = eig.eigenvalues.map(|v| f.apply(v));
+                let want =
+                    eig.eigenvectors * Matrix3::from_diagonal(&fl) * eig.eigenvectors.transpose();
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let e = (got[i][j] - want[(i, j)]).abs();
+                        assert!(e < 1e-13, "{f:?} A = {a} Â error {e:e}");
+                    }
+                }
+            }
+        }
+    }
 }
