@@ -26,7 +26,7 @@
 use crate::filter::Filter;
 use crate::modes::{Modes, outer};
 use crate::spectral::{ScaleBlock, Spectral, pair_indices};
-use crate::sym::isolated;
+use crate::sym::{Isolated, complete_scaled, isolated_scaled, normalised};
 
 /// The filtered stretch-space data needed for assembly.
 #[derive(Clone, Copy, Debug)]
@@ -84,7 +84,9 @@ fn below_floor<const D: usize>(a: &[[f64; D]; D], floor: f64) -> Option<usize> {
 /// its side of the floor, so its gap g to the nearest other eigenvalue is at
 /// least the correction |f(λ) − λ| (half of it for Abs) and the ≈ ε‖A‖/g error of
 /// its cross-product eigenvector costs at most ≈ 2ε‖A‖ in Â. It is used only
-/// when it is also the best-separated eigenpair (else `None`: full eigensolve).
+/// when it is also the best-separated eigenpair; otherwise the decomposition is
+/// completed from that pair (complement + one 2×2 rotation). `None` only when
+/// the LDLᵀ pivots break down (then the caller's general path runs).
 fn filter_block3(a: &[[f64; 3]; 3], filter: Filter) -> Option<[[f64; 3]; 3]> {
     let floor = filter.floor();
     let k = below_floor(a, floor)?;
@@ -99,18 +101,40 @@ fn filter_block3(a: &[[f64; 3]; 3], filter: Filter) -> Option<[[f64; 3]; 3]> {
             _ => build(&|i, j| floor * id(i, j)),
         }),
         _ => {
-            let iso = isolated(a)?;
-            let (l, z) = (iso.value, iso.vector);
-            if k == 1 && !iso.is_max {
-                let c = filter.apply(l) - l;
-                Some(build(&|i, j| a[i][j] + c * z[i] * z[j]))
-            } else if k == 2 && iso.is_max {
-                Some(match filter {
-                    Filter::Abs => build(&|i, j| -a[i][j] + 2.0 * l * z[i] * z[j]),
-                    _ => build(&|i, j| l * z[i] * z[j] + floor * (id(i, j) - z[i] * z[j])),
-                })
-            } else {
-                None
+            let (an, scale) = normalised(a)?;
+            let iso = isolated_scaled(&an);
+            match iso {
+                Some(Isolated {
+                    value,
+                    vector: z,
+                    is_max,
+                }) if (k == 1) != is_max => {
+                    let l = value * scale;
+                    Some(if k == 1 {
+                        let c = filter.apply(l) - l;
+                        build(&|i, j| a[i][j] + c * z[i] * z[j])
+                    } else {
+                        match filter {
+                            Filter::Abs => build(&|i, j| -a[i][j] + 2.0 * l * z[i] * z[j]),
+                            _ => build(&|i, j| l * z[i] * z[j] + floor * (id(i, j) - z[i] * z[j])),
+                        }
+                    })
+                }
+                // The needed eigenpair is not the best-separated one: finish the
+                // decomposition from the isolated pair already computed.
+                _ => {
+                    let (vals, vecs) = complete_scaled(&an, iso.as_ref());
+                    let mut out = [[0.0; 3]; 3];
+                    for (z, &v) in vecs.iter().zip(vals.iter()) {
+                        let l = filter.apply(v * scale);
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                out[i][j] += l * z[i] * z[j];
+                            }
+                        }
+                    }
+                    Some(out)
+                }
             }
         }
     }

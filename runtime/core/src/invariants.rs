@@ -108,10 +108,12 @@ fn invariants_2d(
         a[0][1] = a01;
         a[1][0] = a01;
     }
-    let twist0 = if p1 == 0.0 {
-        2.0 * p2 + p3
-    } else if sign_symmetric && near_antipodal(s[0], s[1]) {
+    // The limit comes first: on σ_i = −σ_j a sign-symmetric Ψ has Ψ1 = 0 while
+    // 2Ψ1/(σ_i + σ_j) tends to a non-zero limit.
+    let twist0 = if sign_symmetric && near_antipodal(s[0], s[1]) {
         0.5 * (a[0][0] + a[1][1]) + a[0][1]
+    } else if p1 == 0.0 {
+        2.0 * p2 + p3
     } else {
         2.0 * p1 / i1 + 2.0 * p2 + p3
     };
@@ -161,10 +163,11 @@ fn invariants_3d(
     let mut flip = [0.0; 3];
     for (k, &(i, j)) in PAIRS_3D.iter().enumerate() {
         let base = 2.0 * p2 + s[k] * p3;
-        twist[k] = if p1 == 0.0 {
-            base
-        } else if sign_symmetric && near_antipodal(s[i], s[j]) {
+        // Limit first (see the 2D case): Ψ1 vanishes on σ_i = −σ_j.
+        twist[k] = if sign_symmetric && near_antipodal(s[i], s[j]) {
             0.5 * (a[i][i] + a[j][j]) + a[i][j]
+        } else if p1 == 0.0 {
+            base
         } else {
             2.0 * p1 / (s[i] + s[j]) + base
         };

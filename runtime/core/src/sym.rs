@@ -74,7 +74,7 @@ pub fn sym3_eigen(m: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
         [s[4] * inv, s[5] * inv, s[2] * inv],
     ];
     let (vals, vecs) = sym3_eigen_scaled(&a);
-    ([vals[0] * scale, vals[1] * scale, vals[2] * scale], vecs)
+    sorted([vals[0] * scale, vals[1] * scale, vals[2] * scale], vecs)
 }
 
 const IDENTITY: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -188,41 +188,50 @@ pub(crate) fn isolated_scaled(a: &[[f64; 3]; 3]) -> Option<Isolated> {
     })
 }
 
-/// [`isolated_scaled`] for any finite symmetric matrix (scaled internally).
-pub(crate) fn isolated(m: &[[f64; 3]; 3]) -> Option<Isolated> {
+/// A finite symmetric matrix divided by its largest |entry| (returned as the
+/// second value, > 0); `None` for a zero or non-finite matrix.
+pub(crate) fn normalised(m: &[[f64; 3]; 3]) -> Option<([[f64; 3]; 3], f64)> {
     let scale = m.iter().flatten().fold(0.0f64, |acc, x| acc.max(x.abs()));
     if !scale.is_finite() || scale == 0.0 {
         return None;
     }
     let inv = 1.0 / scale;
-    let a: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| m[i][j] * inv));
-    let mut iso = isolated_scaled(&a)?;
-    iso.value *= scale;
-    Some(iso)
+    Some((
+        std::array::from_fn(|i| std::array::from_fn(|j| m[i][j] * inv)),
+        scale,
+    ))
 }
 
 /// The core on a matrix whose largest entry has magnitude of order 1 (the
 /// thresholds assume it; used directly by the SVD, whose FᵀF is pre-scaled).
 pub(crate) fn sym3_eigen_scaled(a: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
-    // All eigenvalues equal to within rounding: any orthonormal basis works.
-    let Some(Isolated {
+    complete_scaled(a, isolated_scaled(a).as_ref())
+}
+
+/// The full decomposition of an order-1 matrix from its isolated eigenpair
+/// (`None`: all eigenvalues equal to rounding, any orthonormal basis works).
+/// The vectors form a rotation and the values are descending up to rounding
+/// (ties may come out in either order; [`sym3_eigen`] sorts strictly).
+pub(crate) fn complete_scaled(
+    a: &[[f64; 3]; 3],
+    iso: Option<&Isolated>,
+) -> ([f64; 3], [[f64; 3]; 3]) {
+    let Some(&Isolated {
         vector: v0,
         value: l0,
         ..
-    }) = isolated_scaled(a)
+    }) = iso
     else {
         return sorted([a[0][0], a[1][1], a[2][2]], IDENTITY);
     };
 
-    // Orthonormal complement {w1, w2} of v0.
-    let w1 = if v0[0].abs() > v0[1].abs() {
-        let s = 1.0 / (v0[0] * v0[0] + v0[2] * v0[2]).sqrt();
-        [-v0[2] * s, 0.0, v0[0] * s]
-    } else {
-        let s = 1.0 / (v0[1] * v0[1] + v0[2] * v0[2]).sqrt();
-        [0.0, v0[2] * s, -v0[1] * s]
-    };
-    let w2 = cross(&v0, &w1);
+    // Orthonormal complement {w1, w2} of v0 with w1 × w2 = v0, without a square
+    // root (Duff et al. 2017, "Building an orthonormal basis, revisited").
+    let sign = 1f64.copysign(v0[2]);
+    let ia = -1.0 / (sign + v0[2]);
+    let bb = v0[0] * v0[1] * ia;
+    let w1 = [1.0 + sign * v0[0] * v0[0] * ia, sign * bb, -sign * v0[0]];
+    let w2 = [bb, sign + v0[1] * v0[1] * ia, -v0[1]];
     // The 2×2 block of A in that complement, diagonalised by one Jacobi rotation.
     let aw1 = mat_vec(a, &w1);
     let aw2 = mat_vec(a, &w2);
@@ -237,7 +246,12 @@ pub(crate) fn sym3_eigen_scaled(a: &[[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) 
         evec[1][0] * w1[1] + evec[1][1] * w2[1],
         evec[1][0] * w1[2] + evec[1][1] * w2[2],
     ];
-    sorted([l0, ev[0], ev[1]], [v0, y1, y2])
+    // (v0, y1, y2) is right-handed and ev is descending, so both orders below
+    // are descending (to rounding) rotations: no comparisons needed.
+    match iso {
+        Some(i) if !i.is_max => ([ev[0], ev[1], l0], [y1, y2, v0]),
+        _ => ([l0, ev[0], ev[1]], [v0, y1, y2]),
+    }
 }
 
 /// Sort eigenpairs by descending value and make the basis a rotation.

@@ -403,6 +403,17 @@ fn divided_difference_limits_are_accurate_across_the_switch() {
     assert_eq!(flip_value(1.0, 1.0, 3.0, 3.0, 5.0, 5.0, 1.0), 4.0);
     assert_eq!(twist_value(1.0, -1.0, 3.0, -3.0, 5.0, 5.0, 1.0, true), 6.0);
     assert!(twist_value(1.0, -1.0, 3.0, -2.0, 5.0, 5.0, 1.0, false).is_infinite());
+    // Invariant path on the antipodal set: a sign-symmetric energy has Ψ1 = 0
+    // there while 2Ψ1/(σ_i + σ_j) has a finite limit, so an exactly-zero Ψ1
+    // must not short-cut the limit (regression: SD eq. 32 at σ = (1.2, 0.9, −0.9)).
+    let d1 = [0.0, 0.7, 0.3];
+    let d2 = [0.5, 0.2, 0.1, 0.05, 0.02, 0.01];
+    let sp = spectral_from_invariants(&[1.2, 0.9, -0.9], 1.0, d1, d2, false, true);
+    let want = 0.5 * (sp.scale.get(1, 1) + sp.scale.get(2, 2)) + sp.scale.get(1, 2);
+    assert_eq!(sp.twist[0], want);
+    let sp2 = spectral_from_invariants(&[0.9, -0.9], 1.0, d1, d2, false, true);
+    let want2 = 0.5 * (sp2.scale.get(0, 0) + sp2.scale.get(1, 1)) + sp2.scale.get(0, 1);
+    assert_eq!(sp2.twist[0], want2);
     // The same energy through the stretch path with a coupled block, exact repeat.
     let sp = spectral_from_stretch(&[1.0, 1.0], 0.0, [1.0, 1.0], [[3.0, 0.5], [0.5, 3.0]], true);
     assert_eq!(sp.flip[0], 2.5);
