@@ -301,3 +301,22 @@ fn the_loader_reports_clear_errors() {
         })
     ));
 }
+
+/// Ψ1 of SD 3D vanishes on σ1 + σ2 = 0 and rounds to exactly 0.0 at this
+/// σ (from the SVD of a rotated diag(1.2, 0.9, −0.9)); the twist must still be
+/// the limit, not 2Ψ2 + σ0Ψ3.
+#[test]
+fn a_psi1_that_rounds_to_zero_keeps_the_antipodal_limit() {
+    let sd3 = interp::<3>("sd3");
+    for s in [
+        [1.2, 0.9000000000000006, -0.9000000000000002],
+        [1.2, 0.9, -0.9],
+    ] {
+        same_spectral(
+            "sd3 antipodal",
+            &sd3.spectral(&s),
+            &Energy::<3>::spectral(&SymmetricDirichlet, &s),
+            true,
+        );
+    }
+}
