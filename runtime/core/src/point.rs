@@ -2,7 +2,7 @@
 //!
 //! Vectorisation is column-major (Smith et al. 2019, eq. 1): vec(F)[c·d + r] = F_rc.
 //! The gradient is vec(U diag(∂Ψ/∂σ) Vᵀ); the Hessian is Σ λ e eᵀ over the
-//! scaling, twist and flip modes (see [`crate::modes`] and the crate docs).
+//! scaling, twist and flip modes (see the crate docs; element Hessians reuse the same modes).
 //!
 //! If the SVD is not finite (F had a NaN/∞ entry) the *filtered* Hessian and the
 //! gradient are zero; the raw Hessian is NaN.
