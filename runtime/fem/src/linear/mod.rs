@@ -42,6 +42,8 @@ pub enum LinearSolver {
 pub struct PrepareInfo {
     /// Absolute diagonal shift δ actually used.
     pub shift: f64,
+    /// δ relative to the mean diagonal.
+    pub relative_shift: f64,
     /// Numeric factorisations attempted (0 for PCG).
     pub factorizations: usize,
 }
@@ -169,6 +171,7 @@ impl LinearSystem {
                 apply(values, shift, &mut applied);
                 Ok(PrepareInfo {
                     shift,
+                    relative_shift: shift / mean_diag,
                     factorizations: 0,
                 })
             }
@@ -178,6 +181,7 @@ impl LinearSystem {
                     if f.factorize(pattern, values).is_ok() {
                         return Ok(PrepareInfo {
                             shift,
+                            relative_shift: shift / mean_diag,
                             factorizations: attempt,
                         });
                     }

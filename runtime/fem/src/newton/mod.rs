@@ -11,19 +11,22 @@
 //!    in (0, 2] (∞ if none), α₀ = min(1, `barrier_safety`·α_max);
 //!    backtracking Armijo from α₀ (see [`line_search`]); x ← x + αd.
 //!
-//! **Adaptive filter** (`adaptive_filter = true`), after Chen, Liu, Jacobson,
-//! Levin & Zheng 2024, "Trust-Region Eigenvalue Filtering for Projected
-//! Newton": after each accepted step compute the trust-region ratio
+//! **Adaptive filters** ([`params::FilterPolicy`]). After each accepted step
+//! compute the trust-region ratio
 //!
 //!   ρ = (E(x) − E(x + αd)) / −(α gᵀd + ½ α² dᵀH₀d),
 //!
 //! where H₀ is the *unfiltered* Hessian at x (dᵀH₀d is summed per element
-//! from raw element Hessians, one extra element pass, no assembly). The next
-//! iteration uses `Clamp` if |ρ − 1| < `adaptive_threshold` (0.01, the
-//! authors' default: the quadratic model is trustworthy, so take the
-//! Newton-like clamped step) and `Abs` otherwise (|λ| filtering, more
-//! conservative far from the solution). The first iteration uses `Abs`, as
-//! in the authors' implementation (ρ₀ = 0).
+//! from raw element Hessians: one extra element pass, no assembly), and call
+//! the quadratic model trusted when |ρ − 1| < `adaptive_threshold` (0.01).
+//! `TrustRegion` is the rule of Chen, Liu, Jacobson, Levin & Zheng 2024,
+//! "Trust-Region Eigenvalue Filtering for Projected Newton", as in the
+//! authors' code: the next iteration uses `Clamp` when trusted and `Abs`
+//! otherwise, and the first iteration uses `Abs` (their ρ₀ = 0).
+//! `TrustRegionNewton` is our extension of the same test: the configured
+//! filter when not trusted, the raw Hessian (made positive definite by the
+//! diagonal shift, see [`crate::linear`]) when trusted, which restores
+//! Newton's quadratic convergence in the final phase.
 
 pub mod line_search;
 pub mod params;

@@ -2,7 +2,55 @@
 
 use ecc_runtime::filter::Filter;
 
+use serde::{Deserialize, Serialize};
+
 use crate::linear::LinearSolver;
+
+/// Per-iteration choice of the eigenvalue filter.
+///
+/// The adaptive policies compute, after every accepted step αd, the
+/// trust-region ratio ρ = actual / predicted decrease with the *unfiltered*
+/// quadratic model (see [`crate::newton`]), and call the model *trusted*
+/// when |ρ − 1| < `adaptive_threshold`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FilterPolicy {
+    /// Always `NewtonParams::filter` (Smith et al. 2019; default Clamp).
+    #[default]
+    Fixed,
+    /// Chen, Liu, Jacobson, Levin & Zheng 2024: `Clamp` when trusted, `Abs`
+    /// otherwise; the first iteration uses `Abs`.
+    TrustRegion,
+    /// An extension in the same spirit (not from the paper): `filter` when
+    /// not trusted, the **raw** Hessian (`Filter::None`) when trusted. An
+    /// indefinite raw Hessian is made positive definite by the linear
+    /// solver's growing diagonal shift (modified Newton, Nocedal & Wright
+    /// §3.4), so near a minimiser the iteration becomes Newton's method and
+    /// converges quadratically instead of linearly. A raw Hessian with a
+    /// non-finite entry falls back to `filter` for that iteration.
+    TrustRegionNewton,
+}
+
+impl FilterPolicy {
+    /// The filter of the first iteration.
+    pub fn first(self, filter: Filter) -> Filter {
+        match self {
+            FilterPolicy::TrustRegion => Filter::Abs,
+            _ => filter,
+        }
+    }
+
+    /// The filter after a step with trust-region ratio `rho`.
+    pub fn next(self, filter: Filter, rho: f64, threshold: f64) -> Filter {
+        let trusted = (rho - 1.0).abs() < threshold;
+        match self {
+            FilterPolicy::Fixed => filter,
+            FilterPolicy::TrustRegion if trusted => Filter::Clamp,
+            FilterPolicy::TrustRegion => Filter::Abs,
+            FilterPolicy::TrustRegionNewton if trusted => Filter::None,
+            FilterPolicy::TrustRegionNewton => filter,
+        }
+    }
+}
 
 /// Parameters of the projected Newton solver. `Default` gives the paper's
 /// setting: stop on ‖∇E‖∞ ≤ 1e-4, clamp filter, Cholesky when it fits.
@@ -17,11 +65,11 @@ pub struct NewtonParams {
     pub max_iters: usize,
     /// Eigenvalue filter for the element Hessians (clamp by default).
     pub filter: Filter,
-    /// Choose the filter per iteration from the trust-region ratio of the
-    /// previous step (Chen et al. 2024); overrides `filter`. See
-    /// [`crate::newton`] for the exact rule.
-    pub adaptive_filter: bool,
-    /// Adaptive rule threshold: clamp iff |ρ − 1| < this (Chen et al.: 0.01).
+    /// How the filter is chosen per iteration (fixed `filter`, or adaptively
+    /// from the trust-region ratio ρ of the previous step; see [`FilterPolicy`]).
+    pub filter_policy: FilterPolicy,
+    /// The adaptive policies' "model is trusted" test: |ρ − 1| < this
+    /// (Chen et al. 2024 use 0.01).
     pub adaptive_threshold: f64,
     /// Linear solver; `Auto` chooses from the symbolic factor size.
     pub linear_solver: LinearSolver,
@@ -59,7 +107,7 @@ impl Default for NewtonParams {
             tol_rel: 0.0,
             max_iters: 500,
             filter: Filter::default(),
-            adaptive_filter: false,
+            filter_policy: FilterPolicy::Fixed,
             adaptive_threshold: 0.01,
             linear_solver: LinearSolver::Auto,
             max_factor_bytes: 2 << 30,

@@ -61,6 +61,8 @@ pub struct IterationRecord {
     pub rho: Option<f64>,
     /// Absolute diagonal shift used in the linear system.
     pub shift: f64,
+    /// Numeric factorisations this step needed (> 1: the shift was raised).
+    pub factorizations: usize,
     /// PCG iterations (0 with Cholesky).
     pub cg_iterations: usize,
     /// Energy evaluations in the line search.

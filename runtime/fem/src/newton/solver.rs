@@ -7,7 +7,7 @@ use ecc_runtime::filter::Filter;
 use rayon::prelude::*;
 
 use super::line_search::{Armijo, backtrack};
-use super::params::NewtonParams;
+use super::params::{FilterPolicy, NewtonParams};
 use super::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
 use crate::assembly::{Assembler, NonFiniteStencil};
 use crate::dofs::DofMap;
@@ -198,7 +198,7 @@ impl<const D: usize> NewtonSolver<D> {
         self.assembler.reset_timings();
         let p = self.params.clone();
         let scale = p.energy_scale;
-        let base_shift = if self.dofs().n_fixed() == 0 {
+        let null_shift = if self.dofs().n_fixed() == 0 {
             p.null_space_shift
         } else {
             0.0
@@ -210,26 +210,35 @@ impl<const D: usize> NewtonSolver<D> {
         };
         let mut times = TimeSplit::default();
         let mut records = Vec::new();
-        let mut filter = if p.adaptive_filter {
-            Filter::Abs
-        } else {
-            p.filter
-        };
+        let mut filter = p.filter_policy.first(p.filter);
+        // last relative shift that made a raw (unfiltered) Hessian factorable
+        let mut raw_shift = 0.0f64;
         let mut initial: Option<(f64, f64)> = None;
         let mut last = (f64::NAN, f64::NAN);
         let mut iter = 0;
 
         let status = loop {
             // 1. assemble E, ∇E and the filtered Hessian
-            let used_filter = filter;
             let t0 = Instant::now();
-            let assembled = self.assembler.assemble(
+            let mut used_filter = filter;
+            let mut assembled = self.assembler.assemble(
                 &self.terms,
                 x,
                 scale,
                 &mut self.g,
                 Some((filter, &mut self.values)),
             );
+            if filter == Filter::None && matches!(&assembled, Err(b) if b.quantity == "hessian") {
+                // the raw Hessian is genuinely singular somewhere: filter this iteration
+                used_filter = p.filter;
+                assembled = self.assembler.assemble(
+                    &self.terms,
+                    x,
+                    scale,
+                    &mut self.g,
+                    Some((p.filter, &mut self.values)),
+                );
+            }
             let t_assembly = t0.elapsed().as_secs_f64();
             times.assembly += t_assembly;
             let energy = match assembled {
@@ -239,6 +248,7 @@ impl<const D: usize> NewtonSolver<D> {
             let grad_inf = norm_inf(&self.g);
             let g0 = initial.get_or_insert((energy, grad_inf)).1;
             last = (energy, grad_inf);
+
             // 2. convergence
             if grad_inf <= p.tol_abs || grad_inf <= p.tol_rel * g0 {
                 break NewtonStatus::Converged;
@@ -246,7 +256,14 @@ impl<const D: usize> NewtonSolver<D> {
             if iter >= p.max_iters {
                 break NewtonStatus::MaxIterations;
             }
-            // 3. H d = −∇E
+
+            // 3. (H + δI) d = −∇E
+            let raw = used_filter == Filter::None;
+            let base_shift = if raw {
+                null_shift.max(0.1 * raw_shift)
+            } else {
+                null_shift
+            };
             let t1 = Instant::now();
             let prep = self.linear.prepare(
                 self.assembler.pattern(),
@@ -260,6 +277,9 @@ impl<const D: usize> NewtonSolver<D> {
                 Ok(i) => i,
                 Err(f) => break NewtonStatus::FactorizationFailed { shift: f.shift },
             };
+            if raw {
+                raw_shift = prep.relative_shift;
+            }
             let t2 = Instant::now();
             self.rhs.iter_mut().zip(&self.g).for_each(|(r, g)| *r = -g);
             let eta = (grad_inf / g0).sqrt().clamp(p.pcg_rel_min, p.pcg_rel_max);
@@ -277,7 +297,8 @@ impl<const D: usize> NewtonSolver<D> {
             if slope.is_nan() || slope >= 0.0 || !slope.is_finite() {
                 break NewtonStatus::BadDirection { slope };
             }
-            // 4. line search
+
+            // 4. inversion-free bound and backtracking line search
             let t3 = Instant::now();
             self.dx
                 .par_iter_mut()
@@ -306,21 +327,22 @@ impl<const D: usize> NewtonSolver<D> {
                     });
                 assembler.energy(terms, xt, scale)
             });
+            let t_line_search = t3.elapsed().as_secs_f64();
+            times.line_search += t_line_search;
             let acc = match ls {
                 Ok(a) => a,
                 Err(last_step) => {
-                    times.line_search += t3.elapsed().as_secs_f64();
                     break NewtonStatus::LineSearchFailed {
                         last_step,
                         max_step: alpha_max.is_finite().then_some(alpha_max),
                     };
                 }
             };
-            let t_line_search = t3.elapsed().as_secs_f64();
-            // trust-region ratio for the adaptive filter (raw curvature along d at the old x)
+
+            // 5. trust-region ratio for the adaptive policies (raw curvature along d at the old x)
             let mut rho = None;
             let mut t_rho = 0.0;
-            if p.adaptive_filter {
+            if p.filter_policy != FilterPolicy::Fixed {
                 let t4 = Instant::now();
                 let curv = self
                     .assembler
@@ -329,18 +351,13 @@ impl<const D: usize> NewtonSolver<D> {
                 let predicted = -(a * slope + 0.5 * a * a * curv);
                 let r = (energy - acc.energy) / predicted;
                 rho = Some(r);
-                filter = if (r - 1.0).abs() < p.adaptive_threshold {
-                    Filter::Clamp
-                } else {
-                    Filter::Abs
-                };
+                filter = p.filter_policy.next(p.filter, r, p.adaptive_threshold);
                 t_rho = t4.elapsed().as_secs_f64();
+                times.assembly += t_rho;
             }
-            // accept: x ← x + α d (the accepted α was the last one evaluated into xt)
+
+            // 6. accept: x ← x + α d (the accepted α was the last one evaluated into xt)
             x.copy_from_slice(&self.xt);
-            times.line_search += t_line_search;
-            times.assembly += t_rho;
-            let dx_inf = acc.alpha * norm_inf(&self.d);
             let record = IterationRecord {
                 iter,
                 energy,
@@ -348,10 +365,11 @@ impl<const D: usize> NewtonSolver<D> {
                 step: acc.alpha,
                 max_step: alpha_max.is_finite().then_some(alpha_max),
                 decrement: -slope,
-                dx_inf,
+                dx_inf: acc.alpha * norm_inf(&self.d),
                 filter: format!("{used_filter:?}"),
                 rho,
                 shift: prep.shift,
+                factorizations: prep.factorizations,
                 cg_iterations: solve.iterations,
                 line_search_evals: acc.evals,
                 noise_limited: acc.noise_limited,
