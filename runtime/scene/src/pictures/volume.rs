@@ -1,0 +1,279 @@
+//! Shaded renders of tet meshes (their boundary surface).
+
+use ecc_mesh::tet_boundary_faces;
+
+use super::image::{Picture, Rgb, hex, mix, scale};
+use super::raster::{Camera, ZBuffer, cross, dot, normalize, sub, triangle};
+use super::{SS, View, title};
+
+const BODY: u32 = 0x6f9fd8;
+const HANDLE: u32 = 0xee7d3b;
+
+/// Orbit direction (from the target towards the eye) for azimuth/elevation
+/// in degrees around `up`; azimuth 0 looks along −h₀, where h₀ is the
+/// world axis most perpendicular to `up` (z for y-up).
+pub(crate) fn orbit(up: [f64; 3], az: f64, el: f64) -> ([f64; 3], [f64; 3]) {
+    let u = normalize(up);
+    let axes = [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let h0 = axes
+        .iter()
+        .copied()
+        .min_by(|a, b| dot(*a, u).abs().total_cmp(&dot(*b, u).abs()))
+        .unwrap_or([0.0, 0.0, 1.0]);
+    let h0 = normalize(sub(h0, u.map(|c| c * dot(h0, u))));
+    let side = cross(u, h0);
+    let (a, e) = (az.to_radians(), el.to_radians());
+    let dir: [f64; 3] =
+        std::array::from_fn(|i| e.cos() * (a.cos() * h0[i] + a.sin() * side[i]) + e.sin() * u[i]);
+    (normalize(dir), u)
+}
+
+/// Centre and radius of the bounding sphere of the boxes of all shots.
+fn bounds(shots: &[&[[f64; 3]]]) -> ([f64; 3], f64) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for s in shots {
+        for p in s.iter() {
+            for c in 0..3 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+    }
+    let c = std::array::from_fn(|i| 0.5 * (lo[i] + hi[i]));
+    let r = 0.5 * dot(sub(hi, lo), sub(hi, lo)).sqrt();
+    (c, r.max(1e-9))
+}
+
+/// Render one body state into the viewport of `pic` with camera `cam`.
+pub(crate) struct Scene3<'a> {
+    pub faces: &'a [[usize; 3]],
+    pub x: &'a [[f64; 3]],
+    pub highlight: &'a [bool],
+    /// Optional per-vertex texture coordinate and checker size.
+    pub checker: Option<(&'a [[f64; 2]], f64)>,
+    pub wire: bool,
+}
+
+/// Smooth vertex normals (area weighted) of a triangle surface.
+fn vertex_normals(faces: &[[usize; 3]], x: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut n = vec![[0.0; 3]; x.len()];
+    for f in faces {
+        let fn_ = cross(sub(x[f[1]], x[f[0]]), sub(x[f[2]], x[f[0]]));
+        for &v in f {
+            for c in 0..3 {
+                n[v][c] += fn_[c];
+            }
+        }
+    }
+    n.into_iter().map(normalize).collect()
+}
+
+pub(crate) fn draw_body(
+    pic: &mut Picture,
+    zb: &mut ZBuffer,
+    cam: &Camera,
+    s: &Scene3<'_>,
+    up: [f64; 3],
+) {
+    let normals = vertex_normals(s.faces, s.x);
+    let fwd = cam.forward();
+    let side = normalize(cross(fwd, up));
+    let key = normalize(std::array::from_fn(|i| {
+        -fwd[i] + 0.9 * up[i] - 0.5 * side[i]
+    }));
+    let fill = normalize(std::array::from_fn(|i| {
+        -fwd[i] + 0.6 * side[i] - 0.2 * up[i]
+    }));
+    let scr: Vec<[f64; 3]> = s.x.iter().map(|p| cam.project(*p)).collect();
+    // wireframe only when triangles are large enough on screen
+    let mean_edge = s
+        .faces
+        .iter()
+        .take(2000)
+        .map(|f| {
+            let (a, b) = (scr[f[0]], scr[f[1]]);
+            ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+        })
+        .sum::<f64>()
+        / s.faces.len().clamp(1, 2000) as f64;
+    let wire = s.wire && mean_edge > 9.0 * SS as f64;
+    for f in s.faces {
+        let p = [scr[f[0]], scr[f[1]], scr[f[2]]];
+        let hl = f
+            .iter()
+            .any(|&v| s.highlight.get(v).copied().unwrap_or(false));
+        let base: Rgb = hex(if hl { HANDLE } else { BODY });
+        let nrm = [normals[f[0]], normals[f[1]], normals[f[2]]];
+        let tex = s
+            .checker
+            .map(|(uv, sz)| ([uv[f[0]], uv[f[1]], uv[f[2]]], sz));
+        let centroid: [f64; 3] =
+            std::array::from_fn(|i| (s.x[f[0]][i] + s.x[f[1]][i] + s.x[f[2]][i]) / 3.0);
+        let to_eye = cam.eye_dir(centroid);
+        triangle(pic, zb, p, |b, dist| {
+            let mut n: [f64; 3] = normalize(std::array::from_fn(|i| {
+                b[0] * nrm[0][i] + b[1] * nrm[1][i] + b[2] * nrm[2][i]
+            }));
+            if dot(n, to_eye) < 0.0 {
+                n = n.map(|c| -c);
+            }
+            let diffuse = 0.28 + 0.62 * dot(n, key).max(0.0) + 0.22 * dot(n, fill).max(0.0);
+            let h = normalize(std::array::from_fn(|i| key[i] + to_eye[i]));
+            let spec = 0.18 * dot(n, h).max(0.0).powi(24);
+            let mut c = base;
+            if let Some((uv, sz)) = &tex {
+                let u = b[0] * uv[0][0] + b[1] * uv[1][0] + b[2] * uv[2][0];
+                let v = b[0] * uv[0][1] + b[1] * uv[1][1] + b[2] * uv[2][1];
+                let odd = ((u / sz).floor() as i64 + (v / sz).floor() as i64).rem_euclid(2) == 1;
+                c = if odd { hex(0x2b4f81) } else { hex(0xf4f1ea) };
+            }
+            let mut out = scale(c, diffuse as f32);
+            out = out.map(|x| x + spec as f32);
+            if wire && dist.iter().fold(f64::INFINITY, |m, d| m.min(*d)) < 0.9 * SS as f64 {
+                out = scale(out, 0.72);
+            }
+            Some(out)
+        });
+    }
+}
+
+/// A checker floor on the plane n·x = h around the body.
+fn draw_ground(
+    pic: &mut Picture,
+    zb: &mut ZBuffer,
+    cam: &Camera,
+    n: [f64; 3],
+    h: f64,
+    centre: [f64; 3],
+    r: f64,
+) {
+    let o: [f64; 3] = std::array::from_fn(|i| centre[i] - (dot(centre, n) - h) * n[i]);
+    let axes = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]];
+    let a = axes
+        .iter()
+        .copied()
+        .min_by(|p, q| dot(*p, n).abs().total_cmp(&dot(*q, n).abs()))
+        .unwrap_or([1.0, 0.0, 0.0]);
+    let e1 = normalize(sub(a, n.map(|c| c * dot(a, n))));
+    let e2 = cross(n, e1);
+    let ext = 2.2 * r;
+    let tile = r / 3.0;
+    let corner =
+        |s: f64, t: f64| -> [f64; 3] { std::array::from_fn(|i| o[i] + s * e1[i] + t * e2[i]) };
+    let q = [
+        corner(-ext, -ext),
+        corner(ext, -ext),
+        corner(ext, ext),
+        corner(-ext, ext),
+    ];
+    let st = [(-ext, -ext), (ext, -ext), (ext, ext), (-ext, ext)];
+    let bg = hex(0xf7f7f7);
+    for tri in [[0, 1, 2], [0, 2, 3]] {
+        let p = tri.map(|k| cam.project(q[k]));
+        let uv = tri.map(|k| st[k]);
+        triangle(pic, zb, p, |b, _| {
+            let s = b[0] * uv[0].0 + b[1] * uv[1].0 + b[2] * uv[2].0;
+            let t = b[0] * uv[0].1 + b[1] * uv[1].1 + b[2] * uv[2].1;
+            let odd = ((s / tile).floor() as i64 + (t / tile).floor() as i64).rem_euclid(2) == 1;
+            let c = if odd { hex(0xc9ccd1) } else { hex(0xe3e5e8) };
+            // fade out towards the edge of the floor
+            let d = (s.abs().max(t.abs()) / ext).clamp(0.0, 1.0);
+            Some(mix(c, bg, (d * d) as f32))
+        });
+    }
+}
+
+/// The boundary of a tet mesh in each shot; the last shot is the main panel.
+pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View<'_>) -> Picture {
+    let (w, h) = (view.size.0 * SS, view.size.1 * SS);
+    let mut pic = Picture::new(w, h, [1.0; 3]);
+    pic.gradient(hex(0xe9eef5), hex(0xfbfbfb));
+    let faces = tet_boundary_faces(tets);
+    let all: Vec<&[[f64; 3]]> = shots.iter().map(|(_, x)| x.as_slice()).collect();
+    let Some((last_frame, last)) = shots.last() else {
+        return pic.downsample(SS);
+    };
+    let (centre, r) = bounds(&all);
+    let (dir, up) = orbit(view.up, view.camera.0, view.camera.1);
+    let top = 44.0 * SS as f64;
+    let strip = if shots.len() > 2 {
+        0.26 * h as f64
+    } else {
+        0.0
+    };
+    let margin = 24.0 * SS as f64;
+    let every: Vec<[f64; 3]> = all.iter().flat_map(|s| s.iter().copied()).collect();
+    let main_vp = (
+        margin,
+        top,
+        w as f64 - 2.0 * margin,
+        h as f64 - top - strip - margin,
+    );
+    let cam = Camera::fit(centre, dir, up, 6.0 * r, &every, main_vp);
+    let mut zb = ZBuffer::new(&pic);
+    if let Some((n, gh)) = view.ground {
+        draw_ground(&mut pic, &mut zb, &cam, n, gh, centre, r);
+    }
+    let scene = Scene3 {
+        faces: &faces,
+        x: last,
+        highlight: view.highlight,
+        checker: None,
+        wire: true,
+    };
+    draw_body(&mut pic, &mut zb, &cam, &scene, up);
+    title(
+        &mut pic,
+        view.title,
+        &format!(
+            "frame {last_frame}   {} tets, {} boundary faces",
+            tets.len(),
+            faces.len()
+        ),
+    );
+    if strip > 0.0 {
+        let k = shots.len().min(6);
+        let pick: Vec<usize> = (0..k)
+            .map(|i| i * (shots.len() - 1) / (k - 1).max(1))
+            .collect();
+        let cell = (w as f64 - 2.0 * margin) / k as f64;
+        let y0 = h as f64 - strip - 0.3 * margin;
+        for (j, &i) in pick.iter().enumerate() {
+            let vp = (
+                margin + j as f64 * cell + 6.0 * SS as f64,
+                y0 + 18.0 * SS as f64,
+                cell - 12.0 * SS as f64,
+                strip - 24.0 * SS as f64,
+            );
+            pic.fill_rect(
+                vp.0 as i64,
+                (y0 + 14.0 * SS as f64) as i64,
+                (vp.0 + vp.2) as i64,
+                (y0 + strip) as i64,
+                hex(0xffffff),
+            );
+            let tcam = Camera::fit(centre, dir, up, 6.0 * r, &every, vp);
+            let mut tz = ZBuffer::new(&pic);
+            if let Some((n, gh)) = view.ground {
+                draw_ground(&mut pic, &mut tz, &tcam, n, gh, centre, r);
+            }
+            let s = Scene3 {
+                faces: &faces,
+                x: &shots[i].1,
+                highlight: view.highlight,
+                checker: None,
+                wire: false,
+            };
+            draw_body(&mut pic, &mut tz, &tcam, &s, up);
+            pic.text(
+                vp.0 as i64,
+                y0 as i64,
+                &format!("frame {}", shots[i].0),
+                SS as i64,
+                hex(0x404040),
+            );
+        }
+    }
+    pic.downsample(SS)
+}

@@ -1,0 +1,209 @@
+//! `[mesh]`: read a file or generate a shape, scale and move it, validate it.
+//!
+//! Triangle meshes whose every z is 0 are *planar* (2D deformation);
+//! other triangle meshes are *surfaces* (parameterisation only). Tet meshes
+//! are volumes. Validation (ecc-mesh) rejects degenerate or inverted
+//! elements and drops unreferenced vertices; `vertex_map` keeps the file's
+//! ids so that `handles.ids` can refer to them.
+
+use ecc_mesh::{
+    AnyMesh, MeshError, TetMesh, TriMesh, ValidationOptions, bar_tet, box_tet, disk_tri, grid_tri,
+    read_mesh, validate_tet, validate_tri,
+};
+
+use crate::error::SceneError;
+use crate::spec::{SceneFile, Shape};
+
+/// A validated mesh of one of the three kinds.
+#[derive(Clone, Debug)]
+pub enum MeshKind {
+    /// Triangles in the plane z = 0.
+    Planar(TriMesh),
+    /// Triangles in 3D.
+    Surface(TriMesh),
+    /// Tetrahedra.
+    Volume(TetMesh),
+}
+
+/// The body's mesh and where it came from.
+#[derive(Clone, Debug)]
+pub struct LoadedMesh {
+    /// The mesh.
+    pub kind: MeshKind,
+    /// File id → body id (`None`: unreferenced vertex, dropped).
+    pub vertex_map: Vec<Option<usize>>,
+    /// "path/to/file" or "generated bar (resolution 2)".
+    pub source: String,
+    /// Validation notes (dropped vertices, several components).
+    pub warnings: Vec<String>,
+}
+
+impl LoadedMesh {
+    /// "planar triangle", "surface triangle" or "tetrahedral".
+    pub fn kind_name(&self) -> &'static str {
+        match self.kind {
+            MeshKind::Planar(_) => "planar triangle",
+            MeshKind::Surface(_) => "surface triangle",
+            MeshKind::Volume(_) => "tetrahedral",
+        }
+    }
+
+    /// (vertices, elements).
+    pub fn counts(&self) -> (usize, usize) {
+        match &self.kind {
+            MeshKind::Planar(m) | MeshKind::Surface(m) => (m.positions.len(), m.triangles.len()),
+            MeshKind::Volume(m) => (m.positions.len(), m.tets.len()),
+        }
+    }
+}
+
+fn mesh_error(key: &str, e: MeshError) -> SceneError {
+    SceneError::invalid(key, e.to_string())
+}
+
+/// Read a mesh file named in the scene at `key`.
+pub fn read_file(
+    file: &SceneFile,
+    key: &str,
+    written: &str,
+) -> Result<(AnyMesh, String), SceneError> {
+    let path = file.resolve(written);
+    if !path.exists() {
+        let hint = if written.starts_with("data:") {
+            " (set ECC_DATA_DIR to the folder with the public meshes)"
+        } else {
+            " (paths are relative to the scene file)"
+        };
+        return Err(SceneError::invalid(
+            key,
+            format!("file not found: {}{hint}", path.display()),
+        ));
+    }
+    let mesh = read_mesh(&path).map_err(|e| mesh_error(key, e))?;
+    Ok((mesh, path.display().to_string()))
+}
+
+fn generate(file: &SceneFile, shape: Shape) -> (AnyMesh, String) {
+    let m = &file.scene.mesh;
+    match shape {
+        Shape::Bar => {
+            let r = m.resolution.unwrap_or(2);
+            (
+                AnyMesh::Tet(bar_tet(r)),
+                format!("generated bar (resolution {r})"),
+            )
+        }
+        Shape::Box => {
+            let c = m.cells.clone().unwrap_or(vec![4, 4, 4]);
+            let s = m.size.clone().unwrap_or(vec![1.0, 1.0, 1.0]);
+            (
+                AnyMesh::Tet(box_tet(c[0], c[1], c[2], [s[0], s[1], s[2]])),
+                format!("generated box ({}×{}×{} cells)", c[0], c[1], c[2]),
+            )
+        }
+        Shape::Disk => {
+            let rings = m.rings.unwrap_or(8);
+            let radius = m.radius.unwrap_or(1.0);
+            (
+                AnyMesh::Tri(disk_tri(rings, radius)),
+                format!("generated disk ({rings} rings)"),
+            )
+        }
+        Shape::Grid => {
+            let c = m.cells.clone().unwrap_or(vec![8, 8]);
+            let s = m.size.clone().unwrap_or(vec![1.0, 1.0]);
+            (
+                AnyMesh::Tri(grid_tri(c[0], c[1], s[0], s[1])),
+                format!("generated grid ({}×{} cells)", c[0], c[1]),
+            )
+        }
+    }
+}
+
+/// Apply `scale` then `translate` (2 or 3 components; 2 only for triangle meshes).
+fn transform(file: &SceneFile, positions: &mut [[f64; 3]], tri: bool) -> Result<(), SceneError> {
+    let m = &file.scene.mesh;
+    let s = m.scale.unwrap_or(1.0);
+    let t = match &m.translate {
+        None => [0.0; 3],
+        Some(v) if v.len() == 3 => [v[0], v[1], v[2]],
+        Some(v) if v.len() == 2 && tri => [v[0], v[1], 0.0],
+        Some(v) => {
+            return Err(SceneError::invalid(
+                "mesh.translate",
+                format!(
+                    "expected {} components, got {}",
+                    if tri { "2 or 3" } else { "3" },
+                    v.len()
+                ),
+            ));
+        }
+    };
+    for p in positions.iter_mut() {
+        for c in 0..3 {
+            p[c] = p[c] * s + t[c];
+        }
+    }
+    Ok(())
+}
+
+/// Load `[mesh]` (file or generated), transform and validate it.
+/// `surface_ok`: a non-planar triangle mesh is acceptable (parameterisation).
+pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError> {
+    let spec = &file.scene.mesh;
+    let (mesh, source) = match (&spec.file, spec.generate) {
+        (Some(f), _) => read_file(file, "mesh.file", f)?,
+        (None, Some(shape)) => generate(file, shape),
+        (None, None) => return Err(SceneError::invalid("mesh", "no mesh given")),
+    };
+    let key = if spec.file.is_some() {
+        "mesh.file"
+    } else {
+        "mesh"
+    };
+    let opts = ValidationOptions::default();
+    let invalid = |e: ecc_mesh::ValidationError| {
+        SceneError::invalid(key, format!("the mesh is not usable: {e}"))
+    };
+    match mesh {
+        AnyMesh::Tri(mut m) => {
+            transform(file, &mut m.positions, true)?;
+            let planar = !surface_ok && m.positions.iter().all(|p| p[2] == 0.0);
+            if !planar && !surface_ok {
+                return Err(SceneError::invalid(
+                    key,
+                    "a triangle surface in 3D can only be parameterised (add \
+                     [effects.parameterize]); deformation needs a planar (z = 0) \
+                     triangle mesh or a tet mesh",
+                ));
+            }
+            let v = validate_tri(m, planar, &opts).map_err(invalid)?;
+            Ok(LoadedMesh {
+                kind: if planar {
+                    MeshKind::Planar(v.mesh)
+                } else {
+                    MeshKind::Surface(v.mesh)
+                },
+                vertex_map: v.vertex_map,
+                source,
+                warnings: v.warnings,
+            })
+        }
+        AnyMesh::Tet(mut m) => {
+            if surface_ok {
+                return Err(SceneError::invalid(
+                    key,
+                    "a parameterisation needs a triangle surface mesh, got a tetrahedral mesh",
+                ));
+            }
+            transform(file, &mut m.positions, false)?;
+            let v = validate_tet(m, &opts).map_err(invalid)?;
+            Ok(LoadedMesh {
+                kind: MeshKind::Volume(v.mesh),
+                vertex_map: v.vertex_map,
+                source,
+                warnings: v.warnings,
+            })
+        }
+    }
+}

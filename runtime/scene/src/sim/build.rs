@@ -1,0 +1,280 @@
+//! Turning a scene into an [`Engine`]: exactly the named terms, nothing more.
+//!
+//! | scene | term | stencils |
+//! |---|---|---|
+//! | always | `elastic` Σ|q|Ψ (or `interpolation` (1−t)E₁ + tE₂) | elements |
+//! | `gravity` | `gravity` −Σ m_v g·x_v | vertices |
+//! | `inertia` | `inertia` ½w‖x − x̃‖²_M (builds the mass matrix) | vertices / elements |
+//! | `damping.alpha` | `damping_mass` ½αa‖x − y‖²_M | as inertia |
+//! | `damping.beta` | `damping_stiffness` ½βa (x − y)ᵀK(x − y) | elements |
+//! | `ground` | `ground` barrier or penalty | boundary vertices |
+//! | `handles` | Dirichlet (fixed vertices), no term | — |
+//!
+//! The solver minimises the objective divided by the total rest measure
+//! Σ|q| (a per-unit-area/volume objective), so `solver.tol` means the same
+//! on small and large meshes.
+//!
+//! Ground defaults: normal +y, d̂ = 10⁻³ × bounding-box diagonal, and
+//! κ = 10 W/(n_b d̂) with W the body's weight (Σ m_v |g|, or Σ|q| without
+//! gravity) and n_b the number of boundary vertices: the barrier force at
+//! d = d̂/2 is 1.19 κ d̂, so about a tenth of the boundary vertices hold the
+//! body's weight there.
+
+use std::sync::Arc;
+
+use ecc_fem::{Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
+
+use super::engine::{Engine, Slots};
+use crate::body::Body;
+use crate::counters::{Counter, Counters};
+use crate::dynamics::Dynamics;
+use crate::error::SceneError;
+use crate::handles::{Handle, build_handle, vector};
+use crate::spec::{FilterKind, GroundKind, LinearKind, SceneFile, SolverSpec};
+use crate::terms::{
+    Blend, Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping, vertex_masses,
+};
+
+/// Newton parameters from `[solver]` with the objective scaled by `scale`.
+pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
+    NewtonParams {
+        tol_abs: s.tol.unwrap_or(1e-4),
+        tol_rel: s.tol_rel.unwrap_or(0.0),
+        max_iters: s.max_iters.unwrap_or(200),
+        filter: match s.filter {
+            FilterKind::Abs => Filter::Abs,
+            _ => Filter::Clamp,
+        },
+        filter_policy: if s.filter == FilterKind::Adaptive {
+            FilterPolicy::TrustRegion
+        } else {
+            FilterPolicy::Fixed
+        },
+        linear_solver: match s.linear {
+            LinearKind::Auto => LinearSolver::Auto,
+            LinearKind::Cholesky => LinearSolver::Cholesky,
+            LinearKind::Pcg => LinearSolver::Pcg,
+        },
+        energy_scale: scale,
+        ..NewtonParams::default()
+    }
+}
+
+/// What [`build_engine`] needs besides the scene.
+pub struct EngineInput<'a, const D: usize> {
+    /// The scene.
+    pub file: &'a SceneFile,
+    /// The body.
+    pub body: Body<D>,
+    /// File vertex id → body vertex id.
+    pub vertex_map: &'a [Option<usize>],
+    /// Boundary vertices (ground contact candidates).
+    pub boundary: Vec<usize>,
+    /// Second rest shape (interpolation).
+    pub rest2: Option<Vec<[f64; D]>>,
+    /// Run counters.
+    pub counters: Arc<Counters>,
+}
+
+/// The up direction +y in D dimensions.
+fn up<const D: usize>() -> [f64; D] {
+    std::array::from_fn(|c| if c == 1 { 1.0 } else { 0.0 })
+}
+
+fn bbox_diagonal<const D: usize>(x: &[[f64; D]]) -> f64 {
+    (0..D)
+        .map(|c| {
+            let (lo, hi) = x
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+                    (l.min(p[c]), h.max(p[c]))
+                });
+            (hi - lo) * (hi - lo)
+        })
+        .sum::<f64>()
+        .sqrt()
+}
+
+fn setup_err(e: ecc_fem::FemError) -> SceneError {
+    SceneError::setup("the solver", e)
+}
+
+/// Number of frames: `frames`, else the interpolation steps, else the last
+/// handle key (rounded up), else 50 for dynamics and 1 otherwise.
+pub fn frame_count<const D: usize>(file: &SceneFile, handles: &[Handle<D>]) -> usize {
+    let s = &file.scene;
+    if let Some(n) = s.frames {
+        return n;
+    }
+    if let Some(i) = &s.effects.interpolate {
+        return i.steps.unwrap_or(10);
+    }
+    let last = handles.iter().map(|h| h.last_frame()).fold(0.0, f64::max);
+    if last > 0.0 {
+        return last.ceil() as usize;
+    }
+    if s.effects.inertia.is_some() { 50 } else { 1 }
+}
+
+/// Build the engine (see the module docs).
+pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<D>, SceneError> {
+    let EngineInput {
+        file,
+        body,
+        vertex_map,
+        boundary,
+        rest2,
+        counters,
+    } = input;
+    let fx = &file.scene.effects;
+    let n = body.n_vertices();
+
+    // handles → fixed vertices
+    let mut taken = vec![None; n];
+    let mut handles = Vec::with_capacity(fx.handles.len());
+    for (i, h) in fx.handles.iter().enumerate() {
+        handles.push(build_handle::<D>(i, h, &body.rest, vertex_map, &mut taken)?);
+    }
+    let fixed: Vec<usize> = handles
+        .iter()
+        .flat_map(|h| h.vertices.iter().copied())
+        .collect();
+
+    let mut terms: Vec<Box<dyn Term<D>>> = Vec::new();
+    let mut slots = Slots::default();
+
+    // elastic or interpolation blend
+    let elastic = body.elastic().map_err(setup_err)?;
+    match &rest2 {
+        Some(r2) => {
+            let second = body.elastic_at(r2).map_err(|e| {
+                SceneError::invalid(
+                    "effects.interpolate",
+                    format!("the second rest shape is not usable: {e}"),
+                )
+            })?;
+            let blend = Blend::new(elastic, second, counters.clone())
+                .map_err(|m| SceneError::invalid("effects.interpolate", m))?;
+            slots.blend = true;
+            terms.push(Box::new(blend));
+        }
+        None => terms.push(elastic),
+    }
+    slots.elastic = 0;
+
+    let density = fx.density.unwrap_or(1.0);
+    let g = fx
+        .gravity
+        .as_ref()
+        .map(|g| vector::<D>("effects.gravity", g))
+        .transpose()?;
+    let mut weight = None;
+    if let Some(g) = g {
+        let masses = vertex_masses(&body, density);
+        let gnorm = g.iter().map(|c| c * c).sum::<f64>().sqrt();
+        weight = Some(masses.iter().sum::<f64>() * gnorm);
+        slots.gravity = Some(terms.len());
+        terms.push(Box::new(Gravity::new(&masses, g, counters.clone())));
+    }
+
+    let mut mass = None;
+    let mut dynamics = None;
+    let mut steps_per_frame = 1;
+    if let Some(spec) = &fx.inertia {
+        let m = Arc::new(MassMatrix::build(&body, density, spec.mass, &counters));
+        slots.inertia = Some(terms.len());
+        terms.push(Box::new(MassQuadratic::new(
+            "inertia",
+            Counter::InertiaPass,
+            m.clone(),
+            n,
+            counters.clone(),
+        )));
+        if let Some(d) = &fx.damping {
+            if d.alpha > 0.0 {
+                let mut q = MassQuadratic::new(
+                    "damping_mass",
+                    Counter::DampingPass,
+                    m.clone(),
+                    n,
+                    counters.clone(),
+                );
+                q.coefficient = d.alpha;
+                slots.damping_mass = Some(terms.len());
+                terms.push(Box::new(q));
+            }
+            if d.beta > 0.0 {
+                let mut k =
+                    StiffnessDamping::new(body.elastic().map_err(setup_err)?, n, counters.clone());
+                k.coefficient = d.beta;
+                slots.damping_stiffness = Some(terms.len());
+                terms.push(Box::new(k));
+            }
+        }
+        let v0 = spec
+            .velocity
+            .as_ref()
+            .map(|v| vector::<D>("effects.inertia.velocity", v))
+            .transpose()?
+            .unwrap_or([0.0; D]);
+        dynamics = Some(Dynamics::new(
+            spec.integrator,
+            spec.dt,
+            body.rest.clone(),
+            v0,
+        ));
+        steps_per_frame = spec.steps_per_frame.unwrap_or(1);
+        mass = Some(m);
+    }
+
+    if let Some(gs) = &fx.ground {
+        let normal = match &gs.normal {
+            Some(nv) => vector::<D>("effects.ground.normal", nv)?,
+            None => up::<D>(),
+        };
+        let dhat = gs.dhat.unwrap_or(1e-3 * bbox_diagonal(&body.rest));
+        let nb = boundary.len().max(1) as f64;
+        let w = weight.unwrap_or_else(|| body.total_rest_measure());
+        let kappa = gs.stiffness.unwrap_or(10.0 * w / (nb * dhat));
+        let ground = Ground::new(
+            boundary,
+            normal,
+            gs.height,
+            gs.kind,
+            dhat,
+            kappa,
+            counters.clone(),
+        );
+        if gs.kind == GroundKind::Barrier {
+            let d = ground.min_distance(&body.rest);
+            if !(d > 0.0) {
+                return Err(SceneError::invalid(
+                    "effects.ground.height",
+                    format!(
+                        "the body starts at distance {d:.4} from the ground; a barrier needs \
+                         every vertex strictly above it (lower the ground or move the mesh)"
+                    ),
+                ));
+            }
+        }
+        slots.ground = Some(terms.len());
+        terms.push(Box::new(ground));
+    }
+
+    let scale = 1.0 / body.total_rest_measure();
+    let params = newton_params(&file.scene.solver, scale);
+    let solver = NewtonSolver::new(n, terms, &fixed, params).map_err(setup_err)?;
+    let interp_steps = fx.interpolate.as_ref().map(|i| i.steps.unwrap_or(10));
+    Ok(Engine::new(
+        body,
+        solver,
+        slots,
+        handles,
+        mass,
+        dynamics,
+        steps_per_frame,
+        interp_steps,
+        file.scene.solver.substeps.unwrap_or(1),
+        counters,
+    ))
+}

@@ -1,0 +1,82 @@
+//! Progress reporting: an [`Observer`] sees frames and Newton iterations.
+//! [`Progress`] draws an indicatif bar on stderr (frames, plus the current
+//! Newton iteration and gradient norm); it draws nothing when stderr is not
+//! a terminal or when asked to be quiet.
+
+use ecc_fem::IterationRecord;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::summary::FrameStats;
+
+/// Receives progress events (all methods default to doing nothing).
+pub trait Observer {
+    /// The run starts with `frames` frames to compute.
+    fn start(&mut self, _name: &str, _frames: usize) {}
+    /// A Newton iteration of `frame` was accepted.
+    fn iteration(&mut self, _frame: usize, _rec: &IterationRecord) {}
+    /// `frame` is done.
+    fn frame_done(&mut self, _stats: &FrameStats) {}
+    /// A phase message (writing pictures, …).
+    fn note(&mut self, _msg: &str) {}
+    /// The run is over.
+    fn finish(&mut self) {}
+}
+
+/// Ignores everything.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Silent;
+
+impl Observer for Silent {}
+
+/// An indicatif progress bar on stderr.
+pub struct Progress {
+    bar: ProgressBar,
+    iterations: usize,
+}
+
+impl Progress {
+    /// A bar (hidden when `quiet` or when stderr is not a terminal).
+    pub fn new(quiet: bool) -> Self {
+        let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
+        if quiet {
+            bar.set_draw_target(ProgressDrawTarget::hidden());
+        }
+        let style = ProgressStyle::with_template(
+            "{prefix:.bold} [{bar:30.cyan/blue}] frame {pos}/{len} {msg} ({elapsed})",
+        )
+        .unwrap_or_else(|_| ProgressStyle::default_bar())
+        .progress_chars("=> ");
+        bar.set_style(style);
+        Progress { bar, iterations: 0 }
+    }
+}
+
+impl Observer for Progress {
+    fn start(&mut self, name: &str, frames: usize) {
+        self.bar.set_prefix(name.to_string());
+        self.bar.set_length(frames as u64);
+        self.bar.set_position(0);
+    }
+
+    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) {
+        self.iterations += 1;
+        self.bar.set_message(format!(
+            "| newton {} (total {}) |∇E|∞ {:.2e}",
+            rec.iter + 1,
+            self.iterations,
+            rec.grad_inf
+        ));
+    }
+
+    fn frame_done(&mut self, stats: &FrameStats) {
+        self.bar.set_position(stats.frame as u64);
+    }
+
+    fn note(&mut self, msg: &str) {
+        self.bar.set_message(format!("| {msg}"));
+    }
+
+    fn finish(&mut self) {
+        self.bar.finish_and_clear();
+    }
+}

@@ -1,0 +1,403 @@
+//! The scene file's data model (serde, unknown keys rejected everywhere).
+//!
+//! Vectors are plain arrays whose length must match the mesh dimension
+//! (2 for planar triangle meshes, 3 for tet meshes); this is checked by
+//! [`super::validate`], which also checks every value's range.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+/// A whole scene: what to simulate and what to write.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// A label for reports (default: the scene file's stem).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Number of output frames after the initial one (default: the last
+    /// handle key frame, the interpolation steps, or 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frames: Option<usize>,
+    /// The body.
+    pub mesh: MeshSpec,
+    /// The material / distortion energy.
+    pub energy: EnergySpec,
+    /// What acts on the body. Only what is listed here is assembled.
+    #[serde(default)]
+    pub effects: Effects,
+    /// Newton options.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// Files and pictures.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// The body: a mesh file or a generated shape, optionally scaled and moved.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Mesh file (`.obj .off .mesh .msh .vtk`), relative to the scene file;
+    /// `data:NAME` means `$ECC_DATA_DIR/NAME` (default `/work/shared/data`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+    /// A built-in shape instead of a file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub generate: Option<Shape>,
+    /// `bar`: cubes across the bar's 1 × 1 section (24 r³ tets).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub resolution: Option<usize>,
+    /// `box` / `grid`: cells per axis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cells: Option<Vec<usize>>,
+    /// `box` / `grid`: extent per axis.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<Vec<f64>>,
+    /// `disk`: rings (6 rings² triangles).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rings: Option<usize>,
+    /// `disk`: radius.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub radius: Option<f64>,
+    /// Uniform scale applied to the positions (before `translate`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<f64>,
+    /// Translation applied to the positions.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translate: Option<Vec<f64>>,
+}
+
+/// Built-in generated shapes (ecc-mesh generators).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shape {
+    /// `[-2, 2] × [-0.5, 0.5]²` tet bar.
+    Bar,
+    /// `[0, sx] × [0, sy] × [0, sz]` tet box.
+    Box,
+    /// Planar triangle disk centred at the origin.
+    Disk,
+    /// Planar triangle grid `[0, w] × [0, h]`.
+    Grid,
+}
+
+/// The energy: a built-in generated energy or a `.psi` file, with parameters.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnergySpec {
+    /// A built-in energy (see `ecc sim --help` or the provider's `names()`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// A `.psi` file, evaluated at run time (relative to the scene file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub psi: Option<String>,
+    /// Parameter values, e.g. `{ mu = 1.0, lambda = 10.0 }`.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub params: BTreeMap<String, f64>,
+}
+
+/// The effects. Each is assembled only when present.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Effects {
+    /// Mass density ρ used by gravity and inertia (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub density: Option<f64>,
+    /// Gravitational acceleration vector g (e.g. `[0, -9.81, 0]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<Vec<f64>>,
+    /// Dynamics (time stepping); without it every frame is quasi-static.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<InertiaSpec>,
+    /// Rayleigh damping (needs inertia).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub damping: Option<DampingSpec>,
+    /// A ground half-space.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground: Option<GroundSpec>,
+    /// Pinned or keyframed vertex sets.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub handles: Vec<HandleSpec>,
+    /// Shape interpolation Ψt = (1−t)Ψ1 + tΨ2 towards a second rest shape.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interpolate: Option<InterpolateSpec>,
+    /// Surface parameterisation (a 2D energy on a disk-topology surface).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub parameterize: Option<ParameterizeSpec>,
+}
+
+/// Time integrator.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    /// Implicit (backward) Euler: first order, dissipative.
+    Euler,
+    /// Second-order backward differentiation (first step by implicit Euler).
+    #[default]
+    Bdf2,
+}
+
+/// Mass matrix kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MassKind {
+    /// Diagonal: each element gives ρ|q|/(d+1) to each of its vertices.
+    #[default]
+    Lumped,
+    /// Consistent linear-element mass: ρ|q|(1 + δ_ab)/((d+1)(d+2)).
+    Consistent,
+}
+
+/// Dynamics.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InertiaSpec {
+    /// Time step h (> 0).
+    pub dt: f64,
+    /// Time steps per output frame (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps_per_frame: Option<usize>,
+    /// `euler` or `bdf2` (default).
+    #[serde(default)]
+    pub integrator: Integrator,
+    /// `lumped` (default) or `consistent`.
+    #[serde(default)]
+    pub mass: MassKind,
+    /// Initial velocity of every vertex (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<Vec<f64>>,
+}
+
+/// Rayleigh damping C = α M + β K, K the projected elastic Hessian at the
+/// start of each time step.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingSpec {
+    /// Mass-proportional coefficient α ≥ 0 (1/s).
+    #[serde(default)]
+    pub alpha: f64,
+    /// Stiffness-proportional coefficient β ≥ 0 (s).
+    #[serde(default)]
+    pub beta: f64,
+}
+
+/// How the ground pushes back.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GroundKind {
+    /// Smooth log-barrier (IPC): infinite at contact, nothing passes through.
+    #[default]
+    Barrier,
+    /// Quadratic penalty on penetration depth (penetration ~ load/stiffness).
+    Penalty,
+}
+
+/// The half-space {x : n·x ≥ height}.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroundSpec {
+    /// Offset along the normal (default 0).
+    #[serde(default)]
+    pub height: f64,
+    /// Unit-length-normalised upward normal (default +y).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub normal: Option<Vec<f64>>,
+    /// `barrier` (default) or `penalty`.
+    #[serde(default)]
+    pub kind: GroundKind,
+    /// Barrier activation distance d̂ (default 1e-3 × bounding-box diagonal).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dhat: Option<f64>,
+    /// Stiffness κ (default: from the body's weight, see the ground term).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+}
+
+/// A set of vertices, pinned or driven by keyframed rigid transforms.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HandleSpec {
+    /// A label for reports.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Explicit vertex ids (0-based).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ids: Option<Vec<usize>>,
+    /// Vertices inside an axis-aligned box.
+    #[serde(default, rename = "box", skip_serializing_if = "Option::is_none")]
+    pub bbox: Option<BoxSelect>,
+    /// Vertices on the positive side of a plane.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub plane: Option<PlaneSelect>,
+    /// Rotation centre (default: the handle's rest centroid).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub center: Option<Vec<f64>>,
+    /// Key frames; none means pinned at rest.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub keys: Vec<KeySpec>,
+}
+
+/// `min ≤ x ≤ max` componentwise.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSelect {
+    /// Lower corner.
+    pub min: Vec<f64>,
+    /// Upper corner.
+    pub max: Vec<f64>,
+}
+
+/// `(x − point)·normal ≥ 0`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneSelect {
+    /// A point on the plane.
+    pub point: Vec<f64>,
+    /// Normal towards the selected side.
+    pub normal: Vec<f64>,
+}
+
+/// A rigid transform at a frame: rotate about the centre, then translate.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KeySpec {
+    /// Frame number (≥ 0; frame 0 is the rest pose unless keyed).
+    pub frame: f64,
+    /// Translation (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub translate: Option<Vec<f64>>,
+    /// Rotation in degrees: a rotation vector (axis × angle) in 3D, `[angle]` in 2D.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<Vec<f64>>,
+}
+
+/// The second rest shape: a mesh file with the same connectivity, or a
+/// deformation of the first (twist and/or bend along an axis).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterpolateSpec {
+    /// A mesh file with the same vertices and elements (relative to the scene file).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub target: Option<String>,
+    /// Twist about the axis, degrees from one end to the other.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub twist: Option<f64>,
+    /// Bend into a circular arc, total angle in degrees.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bend: Option<f64>,
+    /// Axis of the twist / bend: `x` (default), `y` or `z`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<String>,
+    /// Number of t values after t = 0 (t_k = k / steps); default 10.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<usize>,
+}
+
+/// Tutte start weights.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TutteKind {
+    /// Uniform (barycentric) weights.
+    #[default]
+    Uniform,
+    /// Floater's mean-value weights.
+    MeanValue,
+}
+
+/// Parameterisation options.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterizeSpec {
+    /// Weights of the Tutte start.
+    #[serde(default)]
+    pub tutte: TutteKind,
+}
+
+/// Eigenvalue filter choice.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FilterKind {
+    /// Clamp negative eigenvalues to 0 (the paper's choice).
+    #[default]
+    Clamp,
+    /// Replace eigenvalues by their absolute value.
+    Abs,
+    /// Per iteration, by the trust-region ratio (Chen et al. 2024).
+    Adaptive,
+}
+
+/// Linear solver choice.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LinearKind {
+    /// Cholesky when the factor fits in memory, else PCG.
+    #[default]
+    Auto,
+    /// Sparse Cholesky (faer).
+    Cholesky,
+    /// Jacobi-preconditioned conjugate gradients.
+    Pcg,
+}
+
+/// Newton options.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// Stop when ‖∇E‖∞ ≤ tol (the objective is divided by the total rest
+    /// measure, so this is a per-unit-area/volume gradient); default 1e-4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tol: Option<f64>,
+    /// Also stop when ‖∇E‖∞ ≤ tol_rel·‖∇E₀‖∞ (default 0: off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tol_rel: Option<f64>,
+    /// Newton iteration cap per solve (default 200).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_iters: Option<usize>,
+    /// `clamp` (default), `abs` or `adaptive`.
+    #[serde(default)]
+    pub filter: FilterKind,
+    /// `auto` (default), `cholesky` or `pcg`.
+    #[serde(default)]
+    pub linear: LinearKind,
+    /// Quasi-static handle moves are split into this many solves per frame
+    /// (default 1; halved further automatically while a move would invert
+    /// an element of a barrier energy).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substeps: Option<usize>,
+}
+
+/// Per-frame mesh formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FrameFormat {
+    /// Wavefront OBJ (the boundary surface of tet meshes; uvs for parameterisations).
+    Obj,
+    /// Legacy VTK unstructured grid (all elements, with point data).
+    Vtk,
+}
+
+/// Outputs.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Output folder, relative to the scene file (default `ecc-out/<name>`
+    /// in the current directory; `ecc sim --out` overrides it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dir: Option<String>,
+    /// Per-frame files (default `["obj", "vtk"]`; `[]` for none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub formats: Option<Vec<FrameFormat>>,
+    /// Write every k-th frame (the last frame is always written); default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub every: Option<usize>,
+    /// Write `result.png` and `convergence.png` (default true).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pictures: Option<bool>,
+    /// Picture size `[width, height]` in pixels (default `[960, 720]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub image_size: Option<Vec<usize>>,
+    /// Camera azimuth and elevation in degrees (default `[35, 25]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub camera: Option<Vec<f64>>,
+}

@@ -1,0 +1,248 @@
+//! The run summary (`summary.json`): what was simulated, which terms were
+//! evaluated and what they cost, per-frame Newton statistics and physical
+//! quantities, and the time split.
+
+use std::collections::BTreeMap;
+
+use ecc_fem::TimeSplit;
+use serde::{Deserialize, Serialize};
+
+use crate::counters::CounterValues;
+
+/// Non-finite numbers (NaN before the first solve, ∞ outside a barrier's
+/// domain) are written as JSON `null` and read back as NaN.
+mod finite_or_null {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_finite() {
+            s.serialize_f64(*v)
+        } else {
+            s.serialize_none()
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
+}
+
+/// One Newton iteration for the convergence plot.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolvePoint {
+    /// ‖∇E‖∞ (scaled objective, free DOFs) at the start of the iteration
+    /// (the last point of a solve: at its returned positions).
+    #[serde(with = "finite_or_null")]
+    pub grad_inf: f64,
+    /// Scaled objective.
+    #[serde(with = "finite_or_null")]
+    pub energy: f64,
+    /// Seconds since the run's first solve started.
+    pub seconds: f64,
+}
+
+/// One Newton solve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveLog {
+    /// The frame it belongs to.
+    pub frame: usize,
+    /// Newton status name.
+    pub status: String,
+    /// Newton steps.
+    pub iterations: usize,
+    /// Iterates (iterations + 1 points).
+    pub points: Vec<SolvePoint>,
+    /// Assembly / factorisation / solve / line-search seconds.
+    pub times: TimeSplit,
+}
+
+/// One output frame.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FrameStats {
+    /// Frame number (0 = initial state).
+    pub frame: usize,
+    /// Simulated time (dynamics).
+    pub time: Option<f64>,
+    /// Interpolation parameter t (interpolation).
+    pub t: Option<f64>,
+    /// Newton solves in this frame.
+    pub solves: usize,
+    /// Newton iterations summed over the frame's solves.
+    pub iterations: usize,
+    /// Distinct statuses of the frame's solves.
+    pub statuses: Vec<String>,
+    /// Every solve converged.
+    pub converged: bool,
+    /// ‖∇E‖∞ at the end of the last solve.
+    #[serde(with = "finite_or_null")]
+    pub grad_inf: f64,
+    /// Σ|q|Ψ (the blended energy for interpolation; unscaled).
+    #[serde(with = "finite_or_null")]
+    pub elastic_energy: f64,
+    /// −Σ m_v g·x_v.
+    pub gravity_potential: Option<f64>,
+    /// Ground barrier / penalty energy.
+    pub contact_energy: Option<f64>,
+    /// ½ vᵀMv.
+    pub kinetic_energy: Option<f64>,
+    /// Sum of the above.
+    #[serde(with = "finite_or_null")]
+    pub total_energy: f64,
+    /// Smallest signed element measure (area / volume).
+    #[serde(with = "finite_or_null")]
+    pub min_measure: f64,
+    /// Elements with signed measure ≤ 0.
+    pub inverted: usize,
+    /// Smallest vertex distance to the ground.
+    pub min_ground_distance: Option<f64>,
+    /// Largest distance between a handle vertex and its target.
+    pub handle_error: Option<f64>,
+    /// Wall seconds for the frame.
+    pub seconds: f64,
+}
+
+/// Cost of one term over the whole run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TermStats {
+    /// Term name.
+    pub name: String,
+    /// Stencils (elements, vertices, …).
+    pub stencils: usize,
+    /// Value-only passes (line search).
+    pub value_passes: usize,
+    /// Gradient + Hessian passes.
+    pub assembly_passes: usize,
+    /// Seconds in this term.
+    pub seconds: f64,
+}
+
+/// The mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MeshStats {
+    /// File path or generator.
+    pub source: String,
+    /// "planar triangle", "surface triangle" or "tetrahedral".
+    pub kind: String,
+    /// Vertices (after dropping unreferenced ones).
+    pub vertices: usize,
+    /// Elements.
+    pub elements: usize,
+    /// Σ|q| at rest.
+    pub rest_measure: f64,
+}
+
+/// The energy.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EnergyStats {
+    /// Its name.
+    pub name: String,
+    /// Parameter values in use.
+    pub params: BTreeMap<String, f64>,
+    /// Barrier energy (inversion-free line search).
+    pub barrier: bool,
+}
+
+/// A handle.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HandleStats {
+    /// Label.
+    pub name: String,
+    /// Number of vertices.
+    pub vertices: usize,
+    /// Keyframes (0 = pinned).
+    pub keys: usize,
+}
+
+/// Everything about a run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Summary {
+    /// Scene name.
+    pub scene: String,
+    /// Scene file.
+    pub scene_file: String,
+    /// "quasi_static", "dynamic", "interpolation" or "parameterization".
+    pub mode: String,
+    /// The mesh.
+    pub mesh: MeshStats,
+    /// The energy.
+    pub energy: EnergyStats,
+    /// Effects the scene names.
+    pub effects: Vec<String>,
+    /// Terms in the objective and their cost (exactly the assembled ones).
+    pub terms: Vec<TermStats>,
+    /// Proof of what ran: mass matrix builds, contact passes, …
+    pub counters: CounterValues,
+    /// Handles.
+    pub handles: Vec<HandleStats>,
+    /// Per-frame statistics (frame 0 = initial state).
+    pub frames: Vec<FrameStats>,
+    /// Every Newton solve (convergence history).
+    pub solves: Vec<SolveLog>,
+    /// Newton iterations over the run.
+    pub newton_iterations: usize,
+    /// Frames whose solves all converged.
+    pub converged_frames: usize,
+    /// Why the run stopped early, if it did.
+    pub stopped: Option<String>,
+    /// Scaled objective at the end.
+    #[serde(with = "finite_or_null")]
+    pub final_energy: f64,
+    /// Seconds: reading and building.
+    pub setup_seconds: f64,
+    /// Seconds: all Newton solves, split by phase.
+    pub newton: TimeSplit,
+    /// Seconds: writing frames, pictures and the summary.
+    pub output_seconds: f64,
+    /// Seconds: the whole run.
+    pub wall_seconds: f64,
+    /// Files written (relative to the output folder).
+    pub outputs: Vec<String>,
+    /// Warnings (mesh validation notes, non-converged frames).
+    pub warnings: Vec<String>,
+}
+
+impl Summary {
+    /// Sum the phase times of `solves`.
+    pub fn newton_split(solves: &[SolveLog]) -> TimeSplit {
+        let mut t = TimeSplit::default();
+        for s in solves {
+            t.assembly += s.times.assembly;
+            t.factor += s.times.factor;
+            t.solve += s.times.solve;
+            t.line_search += s.times.line_search;
+            t.total += s.times.total;
+        }
+        t
+    }
+
+    /// Human-readable `--stats` table: terms and their cost, counters, time split.
+    pub fn stats_table(&self) -> String {
+        let mut s = String::new();
+        s.push_str("terms evaluated (exactly those the scene names):\n");
+        s.push_str(&format!(
+            "  {:<20} {:>9} {:>10} {:>10} {:>10}\n",
+            "term", "stencils", "value", "assembly", "seconds"
+        ));
+        for t in &self.terms {
+            s.push_str(&format!(
+                "  {:<20} {:>9} {:>10} {:>10} {:>10.3}\n",
+                t.name, t.stencils, t.value_passes, t.assembly_passes, t.seconds
+            ));
+        }
+        let c = &self.counters;
+        s.push_str(&format!(
+            "mass matrix builds: {}   stiffness snapshots: {}   contact passes: {}\n",
+            c.mass_matrix_builds, c.stiffness_snapshots, c.contact_passes
+        ));
+        let n = &self.newton;
+        s.push_str(&format!(
+            "newton: {} iterations, {:.3} s (assembly {:.3}, factor {:.3}, solve {:.3}, line search {:.3})\n",
+            self.newton_iterations, n.total, n.assembly, n.factor, n.solve, n.line_search
+        ));
+        s.push_str(&format!(
+            "setup {:.3} s, output {:.3} s, wall {:.3} s\n",
+            self.setup_seconds, self.output_seconds, self.wall_seconds
+        ));
+        s
+    }
+}
