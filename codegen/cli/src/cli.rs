@@ -3,8 +3,10 @@
 use clap::{Parser, Subcommand};
 
 use crate::check::CheckArgs;
+use crate::demo::DemoArgs;
 use crate::emit::EmitArgs;
 use crate::eval::EvalArgs;
+use crate::sim::SimArgs;
 
 /// ecc: exact, PSD-projected eigensystems for isotropic energies written as formulas.
 #[derive(Parser, Debug)]
@@ -32,4 +34,8 @@ pub enum Command {
     Eval(EvalArgs),
     /// Check the eigensystem against central differences and a numeric eigensolve.
     Check(CheckArgs),
+    /// Run a scene file (deformation, dynamics, interpolation, parameterisation); without one, the demo.
+    Sim(SimArgs),
+    /// Run the built-in demo scene and write its pictures to ./ecc-out/demo/.
+    Demo(DemoArgs),
 }

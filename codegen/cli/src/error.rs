@@ -37,6 +37,9 @@ pub enum CliError {
     Usage(String),
     /// Standard output could not be written (e.g. a closed pipe).
     Stdout(String),
+    /// A scene could not be read, built or run (`ecc sim`); the message
+    /// names the file, line and key.
+    Scene(String),
     /// `ecc check` found errors above tolerance (the report is already printed).
     CheckFailed {
         /// How many checks failed.
@@ -61,6 +64,7 @@ impl fmt::Display for CliError {
                 write!(f, "error: cannot generate code for `{path}`: {message}")
             }
             CliError::Usage(message) => write!(f, "error: {message}"),
+            CliError::Scene(message) => write!(f, "error: {message}"),
             CliError::Stdout(message) => {
                 write!(f, "error: cannot write to standard output: {message}")
             }

@@ -49,7 +49,8 @@ JSON output (--json), one object:
   plus energy, file, dim, path, params, F, sigma, domain, finite.
 
 Non-finite numbers (JSON has no Infinity/NaN) are written as null:
-  * F outside the energy's domain (Ψ = +∞, e.g. det F ≤ 0 for a log barrier):
+  * F outside the energy's domain (Ψ = +∞, e.g. det F ≤ 0 for a log barrier,
+    or Ψ overflowing):
     exit status 0, \"domain\": \"outside\", psi and every derivative field null,
     and an \"error\" message;
   * a genuine singularity of the energy at F (e.g. ARAP's twist eigenvalue
@@ -138,7 +139,7 @@ fn to_json(meta: &Meta, p: &PointEval) -> String {
             .raw("finite", "false".into())
             .raw(
                 "error",
-                json::string("psi = +inf: F is outside the energy's domain (e.g. det F <= 0 for a barrier energy)"),
+                json::string("psi = +inf: F is outside the energy's domain (e.g. det F <= 0 for a barrier energy) or psi overflows"),
             );
         for key in [
             "psi",

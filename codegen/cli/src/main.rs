@@ -4,6 +4,7 @@
 
 mod check;
 mod cli;
+mod demo;
 mod emit;
 mod error;
 mod eval;
@@ -11,6 +12,7 @@ mod input;
 mod json;
 mod output;
 mod point;
+mod sim;
 mod source;
 
 use clap::Parser;
@@ -22,6 +24,8 @@ fn run(cli: &Cli) -> Result<(), CliError> {
     match &cli.command {
         Some(Command::Eval(args)) => eval::run(args),
         Some(Command::Check(args)) => check::run(args),
+        Some(Command::Sim(args)) => sim::run(args),
+        Some(Command::Demo(args)) => demo::run(args),
         None => emit::run(&cli.emit),
     }
 }

@@ -107,17 +107,14 @@ impl<const D: usize> InterpEnergy<D> {
                 roots.extend(ir.h_sigma.iter().flatten().copied());
             }
         }
-        if let Some(bad) = roots.iter().find(|r| r.index() >= g.len()) {
-            return Err(BuildError::BadId { id: bad.0 });
-        }
         let psi1_identically_zero = ir.d_inv.as_ref().is_some_and(|d| {
             g.as_num(d.d1[0])
                 .is_some_and(|r| *r == num_rational::BigRational::from_integer(0.into()))
         });
         // Trust `svd_free` only when Ψ really reads neither I1 nor σ.
         let svd_free = ir.svd_free && !g.uses_sigma(ir.psi) && !g.may_depend(ir.psi, Sym::I1);
-        let psi_tape = Tape::compile(g, &[ir.psi]);
-        let full_tape = Tape::compile(g, &roots);
+        let psi_tape = Tape::compile(g, &[ir.psi])?;
+        let full_tape = Tape::compile(g, &roots)?;
         let psi_frozen = psi_tape.freeze(params);
         let full_frozen = full_tape.freeze(params);
         Ok(InterpEnergy {

@@ -60,7 +60,7 @@ fn every_library_graph_matches_the_dsl_evaluator() {
                 roots.extend(d.d1);
                 roots.extend(d.d2);
             }
-            let tape = Tape::compile(&ir.graph, &roots);
+            let tape = Tape::compile(&ir.graph, &roots).unwrap();
             for trial in 0..20 {
                 let params: Vec<f64> = module
                     .params
@@ -98,7 +98,7 @@ fn parameter_only_work_is_hoisted_into_the_prelude() {
     .unwrap();
     let module = ecc_dsl::compile(&src, "snh").unwrap();
     let ir = module.dim(3).unwrap();
-    let tape = Tape::compile(&ir.graph, &[ir.psi]);
+    let tape = Tape::compile(&ir.graph, &[ir.psi]).unwrap();
     // alpha = 1 + mu/lambda - mu/(4 lambda) depends only on parameters.
     assert!(tape.prelude_len() >= 3, "prelude {}", tape.prelude_len());
     let frozen_a = tape.freeze(&[1.0, 10.0]);
@@ -116,7 +116,7 @@ fn pow_at(e: BigRational, x: f64) -> f64 {
     let s = g.add(Node::Sym(Sym::Sigma(0)));
     let ex = g.add(Node::Num(e));
     let p = g.add(Node::Pow([s, ex]));
-    run(&Tape::compile(&g, &[p]), &[], 2, &[x, 1.0])[0]
+    run(&Tape::compile(&g, &[p]).unwrap(), &[], 2, &[x, 1.0])[0]
 }
 
 #[test]
@@ -169,7 +169,7 @@ fn sums_and_products_lower_to_subtraction_and_division() {
     let neg_i2 = g.add(Node::Mul(vec![mone, i2]));
     let sum = g.add(Node::Add(vec![three, neg_i2, prod]));
     let roots: [Id; 1] = [sum];
-    let tape = Tape::compile(&g, &roots);
+    let tape = Tape::compile(&g, &roots).unwrap();
     let sigma = [1.5, 0.5, 2.0];
     let env = Env::new(3, &sigma, &[1.25]);
     let want = 3.0 - env.inv[1] - 2.0 * env.inv[0] * 1.25 / (env.inv[2] * env.inv[2]);
@@ -180,12 +180,23 @@ fn sums_and_products_lower_to_subtraction_and_division() {
 }
 
 #[test]
+fn roots_outside_the_graph_are_an_error() {
+    let mut g = Graph::new(vec![]);
+    let i2 = g.add(Node::Sym(Sym::I2));
+    assert!(Tape::compile(&g, &[i2]).is_ok());
+    assert_eq!(
+        Tape::compile(&g, &[Id(7)]).err(),
+        Some(ecc_interp::BuildError::BadId { id: 7 })
+    );
+}
+
+#[test]
 fn missing_parameters_read_as_nan_instead_of_panicking() {
     let mut g = Graph::new(vec!["mu".into()]);
     let mu = g.add(Node::Sym(Sym::Param(0)));
     let i2 = g.add(Node::Sym(Sym::I2));
     let p = g.add(Node::Mul(vec![mu, i2]));
-    let tape = Tape::compile(&g, &[p]);
+    let tape = Tape::compile(&g, &[p]).unwrap();
     let frozen = tape.freeze(&[]);
     let mut out = [0.0];
     tape.eval(&frozen, [1.0; 3], [3.0; 3], &mut out);

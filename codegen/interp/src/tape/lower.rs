@@ -7,6 +7,7 @@ use num_integer::Integer;
 use num_traits::{One, Signed, ToPrimitive, Zero};
 
 use super::{N_INPUTS, Op, Tape};
+use crate::error::BuildError;
 
 /// Largest |n| for which x^n is expanded into multiplications (repeated
 /// squaring: at most 2·log2(n) products). Larger exponents use `powf`.
@@ -56,7 +57,11 @@ fn reciprocal_power(g: &Graph, id: Id) -> Option<(Id, Rational)> {
 
 impl Tape {
     /// Compile the nodes of `g` reachable from `roots` (see the module docs).
-    pub fn compile(g: &Graph, roots: &[Id]) -> Tape {
+    /// Fails only if a root is not a node of `g`.
+    pub fn compile(g: &Graph, roots: &[Id]) -> Result<Tape, BuildError> {
+        if let Some(bad) = roots.iter().find(|r| r.index() >= g.len()) {
+            return Err(BuildError::BadId { id: bad.0 });
+        }
         let needed = needed_nodes(g, roots);
         let mut lw = Lowerer {
             g,
@@ -77,7 +82,7 @@ impl Tape {
             }
         }
         let outputs: Vec<u32> = roots.iter().map(|r| lw.node_reg[r.index()]).collect();
-        lw.finish(outputs)
+        Ok(lw.finish(outputs))
     }
 }
 

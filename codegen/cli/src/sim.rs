@@ -1,0 +1,159 @@
+//! `ecc sim [SCENE.toml]`: run a scene file (see `ecc_scene` for the format).
+//!
+//! Energies come from the built-in generated library (`energy.name`) or
+//! from a `.psi` file evaluated by the interpreter without rebuilding
+//! (`energy.psi`). Without a scene file, runs the built-in demo (`ecc demo`).
+//! Writes per-frame OBJ/VTK, `result.png`, `convergence.png` and
+//! `summary.json` into the output folder; a progress bar shows frames and
+//! Newton iterations on stderr (hidden with `--quiet` or when stderr is not
+//! a terminal).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use ecc_interp::{LoadError, load_psi};
+use ecc_runtime::Energy;
+use ecc_scene::energy::apply_params;
+use ecc_scene::{
+    EnergyError, EnergyRequest, EnergySource, Progress, RunOptions, SceneError, SceneFile,
+    run_scene,
+};
+
+use crate::error::CliError;
+
+/// `ecc sim` arguments.
+#[derive(Args, Debug, Clone, Default)]
+pub struct SimArgs {
+    /// The scene file (TOML). Without one, runs the built-in demo scene.
+    pub scene: Option<PathBuf>,
+    /// Output folder (default: the scene's `output.dir`, else ./ecc-out/<scene name>).
+    #[arg(long, short = 'o', value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Override the number of frames (e.g. a quick preview).
+    #[arg(long, value_name = "N")]
+    pub frames: Option<usize>,
+    /// No progress bar.
+    #[arg(long, short = 'q')]
+    pub quiet: bool,
+    /// Print the terms evaluated (passes and seconds), the counters and the time split.
+    #[arg(long)]
+    pub stats: bool,
+    /// Print the JSON summary on standard output.
+    #[arg(long)]
+    pub json: bool,
+    /// Do not draw result.png and convergence.png.
+    #[arg(long)]
+    pub no_pictures: bool,
+}
+
+/// Energies for scenes: the generated library and the `.psi` interpreter.
+pub struct CliEnergies;
+
+fn load_error(e: LoadError) -> EnergyError {
+    match e {
+        LoadError::Param { source, .. } => EnergyError::Param(source.to_string()),
+        LoadError::NoSuchDim { .. } => EnergyError::Dimension(e.to_string()),
+        LoadError::Syntax { rendered, .. } => EnergyError::File(format!("\n{}", rendered.trim_end())),
+        other => EnergyError::File(other.to_string()),
+    }
+}
+
+impl CliEnergies {
+    fn by_name<const D: usize>(
+        req: &EnergyRequest<'_>,
+        make: fn(&str) -> Option<Box<dyn Energy<D>>>,
+    ) -> Result<Box<dyn Energy<D>>, EnergyError> {
+        let name = req.name.unwrap_or_default();
+        let mut e = match make(name) {
+            Some(e) => e,
+            None => {
+                return Err(match ecc_energies::entry(name) {
+                    Some(entry) => EnergyError::Dimension(format!(
+                        "`{}` has no {D}D version (it exists in {})",
+                        entry.name,
+                        if entry.d2 { "2D" } else { "3D" }
+                    )),
+                    None => EnergyError::UnknownName {
+                        name: name.to_string(),
+                        known: ecc_energies::names().iter().map(|s| s.to_string()).collect(),
+                    },
+                });
+            }
+        };
+        apply_params(e.as_mut(), req.params)?;
+        Ok(e)
+    }
+}
+
+impl EnergySource for CliEnergies {
+    fn energy2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<2>>, EnergyError> {
+        match req.psi {
+            Some(p) => load_psi::<2>(p, req.params).map_err(load_error),
+            None => Self::by_name::<2>(req, ecc_energies::by_name2),
+        }
+    }
+
+    fn energy3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<3>>, EnergyError> {
+        match req.psi {
+            Some(p) => load_psi::<3>(p, req.params).map_err(load_error),
+            None => Self::by_name::<3>(req, ecc_energies::by_name3),
+        }
+    }
+
+    fn names(&self) -> Vec<String> {
+        ecc_energies::names().iter().map(|s| s.to_string()).collect()
+    }
+}
+
+fn scene_error(e: SceneError) -> CliError {
+    CliError::Scene(e.to_string())
+}
+
+/// Run a parsed scene with the CLI's options.
+pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
+    if let Some(n) = args.frames {
+        if n == 0 {
+            return Err(CliError::Usage("--frames must be at least 1".into()));
+        }
+        file.scene.frames = Some(n);
+    }
+    let opts = RunOptions {
+        out_dir: args.out.clone(),
+        dry_run: false,
+        pictures: args.no_pictures.then_some(false),
+    };
+    let mut progress = Progress::new(args.quiet);
+    let report = run_scene(&file, &CliEnergies, &opts, &mut progress).map_err(scene_error)?;
+    let s = &report.summary;
+    if args.json {
+        let json = serde_json::to_string_pretty(s).map_err(|e| CliError::Stdout(e.to_string()))?;
+        println!("{json}");
+    } else {
+        let frames = s.frames.len().saturating_sub(1);
+        println!(
+            "{}: {} frame(s), {} Newton iterations, {}/{} frames converged, {:.2} s",
+            s.scene, frames, s.newton_iterations, s.converged_frames, frames, s.wall_seconds
+        );
+        if let Some(dir) = &report.out_dir {
+            println!("wrote {} files to {}", s.outputs.len(), dir.display());
+        }
+    }
+    if args.stats {
+        eprint!("{}", s.stats_table());
+    }
+    for w in &s.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Some(why) = &s.stopped {
+        return Err(CliError::Scene(format!("the run stopped early: {why}")));
+    }
+    Ok(())
+}
+
+/// `ecc sim`.
+pub fn run(args: &SimArgs) -> Result<(), CliError> {
+    match &args.scene {
+        Some(path) => run_file(SceneFile::read(path).map_err(scene_error)?, args),
+        None => crate::demo::run_demo(args),
+    }
+}
