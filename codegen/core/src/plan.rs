@@ -15,9 +15,9 @@
 //! 3. binds a node to a `let` when it is a root, used more than once in its
 //!    region (each shared node is computed once), or the base of a power
 //!    that is expanded into repeated products; every other node is inlined
-//!    into its single user. Products of all σ and sums of all σ read the
-//!    invariants I3 and I1 already computed, and two bindings that render
-//!    to the same code are merged;
+//!    into its single user. Products of all σ, sums of all σ and sums of all
+//!    σ² read the invariants I3, I1 and I2 instead, and two bindings that
+//!    render to the same code are merged;
 //! 4. names the bindings: the root's name, a hint (`psi_i2` for ∂Ψ/∂I2), a
 //!    structural name (`inv_i3`, `s1_plus_s2`, `log_i3`, `i2_sq`) or `t{n}`.
 
@@ -690,7 +690,8 @@ fn visit(id: Id, reads: &HashMap<Id, Vec<Id>>, state: &mut HashMap<Id, u8>, orde
     order.push(id);
 }
 
-/// I3 for a product of all σ, I1 for a sum of all σ (in dimension `dim`).
+/// I3 for a product of all σ, I1 for a sum of all σ, I2 for a sum of all
+/// σ² (in dimension `dim`): the same values, computed the same way.
 fn invariant_of(g: &Graph, node: &Node, dim: u8) -> Option<Sym> {
     let all_sigma = |c: &[Id]| {
         c.len() == dim as usize
@@ -699,9 +700,21 @@ fn invariant_of(g: &Graph, node: &Node, dim: u8) -> Option<Sym> {
                     .any(|&x| matches!(g.get(x), Node::Sym(Sym::Sigma(j)) if *j == k))
             })
     };
+    let all_squares = |c: &[Id]| {
+        c.len() == dim as usize
+            && (0..dim).all(|k| {
+                c.iter().any(|&x| match g.get(x) {
+                    Node::Pow([b, e]) => {
+                        matches!(g.get(*b), Node::Sym(Sym::Sigma(j)) if *j == k) && g.is_int(*e, 2)
+                    }
+                    _ => false,
+                })
+            })
+    };
     match node {
         Node::Mul(c) if all_sigma(c) => Some(Sym::I3),
         Node::Add(c) if all_sigma(c) => Some(Sym::I1),
+        Node::Add(c) if all_squares(c) => Some(Sym::I2),
         _ => None,
     }
 }
