@@ -157,7 +157,12 @@ fn generated_rust_compiles_in_a_crate_that_depends_on_the_runtime() {
     );
     std::fs::write(dir.path().join("Cargo.toml"), manifest).unwrap();
     std::fs::copy(root.join("Cargo.lock"), dir.path().join("Cargo.lock")).unwrap();
-    let target = root.join("target-cli/emit-check");
+    // Next to the binary under test: <target>/<profile>/ecc → <target>/emit-check.
+    let exe = Path::new(env!("CARGO_BIN_EXE_ecc"));
+    let target = exe
+        .parent()
+        .and_then(Path::parent)
+        .map_or_else(|| dir.path().join("target"), |t| t.join("emit-check"));
     let out = Command::new(env!("CARGO"))
         .args(["check", "--offline", "--quiet", "--manifest-path"])
         .arg(dir.path().join("Cargo.toml"))
