@@ -10,10 +10,11 @@
 //!
 //! ## Expression form
 //!
-//! ```ignore
-//! use ecc_runtime::Energy;
+//! ```
+//! use ecc_runtime::{Energy, ScaleBlock};
 //! let arap = ecc_macros::energy!(I2 - 2*I1 + d);      // a value of a generated type
 //! let s = Energy::<3>::spectral(&arap, &[1.2, 1.0, 0.9]);
+//! assert_eq!(s.scale, ScaleBlock::Diagonal([2.0; 3])); // proved decoupled
 //! ```
 //!
 //! The input may also hold statements separated by `;`
@@ -22,7 +23,7 @@
 //!
 //! ## Item form
 //!
-//! ```ignore
+//! ```
 //! ecc_macros::energy! {
 //!     /// Stable Neo-Hookean.
 //!     pub struct Snh;
@@ -33,6 +34,8 @@
 //! }
 //! let mut e = Snh::new();        // or Snh::default(); fields `mu`, `lambda`
 //! e.lambda = 100.0;
+//! use ecc_runtime::Energy;
+//! assert!(Energy::<3>::psi(&e, &[1.0, 1.0, 1.0]).is_finite());
 //! ```
 //!
 //! Doc comments are kept; the visibility is `pub`, `pub(crate)` or private;

@@ -45,8 +45,8 @@ impl Text {
     }
 
     fn push(&mut self, s: &str, span: Span, joint: bool) {
-        let tight = matches!(s, ")" | "]" | "}" | "," | ";" | "*" | "/" | "^")
-            || matches!(self.prev.as_str(), "(" | "[" | "{" | "*" | "/" | "^")
+        let tight = matches!(s, ")" | "]" | "}" | "," | ";" | "*" | "/" | "^" | ".")
+            || matches!(self.prev.as_str(), "(" | "[" | "{" | "*" | "/" | "^" | ".")
             || (s == "("
                 && self
                     .prev
