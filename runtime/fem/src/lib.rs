@@ -74,7 +74,7 @@ pub use assembly::{Assembler, NonFiniteStencil, TermTiming};
 pub use dofs::DofMap;
 pub use elastic::{Elastic, Simplex, Tet, Tri};
 pub use error::FemError;
-pub use linear::LinearSolver;
+pub use linear::{AutoLimits, LinearSolver};
 pub use newton::params::{FilterPolicy, NewtonParams};
 pub use newton::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
 pub use newton::solver::{Evaluation, NewtonSolver};

@@ -11,7 +11,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymmetricOrdering,
+    CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -87,12 +87,29 @@ impl CholeskyFactor {
         self.factor_nnz() * std::mem::size_of::<f64>()
     }
 
+    /// Estimated floating-point operations of one numeric factorisation,
+    /// Σ_j c_j² over the column counts c_j of L (supernodal: column k of a
+    /// supernode of width w with r off-diagonal rows has c = w − k + r).
+    pub fn factor_flops(&self) -> f64 {
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(s) => s
+                .col_ptr()
+                .windows(2)
+                .map(|w| ((w[1] - w[0]) as f64).powi(2))
+                .sum(),
+            SymbolicCholeskyRaw::Supernodal(s) => (0..s.n_supernodes())
+                .map(|k| {
+                    let w = s.supernode_end()[k] - s.supernode_begin()[k];
+                    let r = s.supernode(k).pattern().len();
+                    (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>()
+                })
+                .sum(),
+        }
+    }
+
     /// Whether faer chose the supernodal variant.
     pub fn is_supernodal(&self) -> bool {
-        matches!(
-            self.symbolic.raw(),
-            faer::sparse::linalg::cholesky::SymbolicCholeskyRaw::Supernodal(_)
-        )
+        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
     }
 
     /// How many symbolic analyses this factor has done (always 1: it is never redone).

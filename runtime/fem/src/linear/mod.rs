@@ -27,14 +27,39 @@ use pcg::{Pcg, PcgInfo};
 /// Which linear solver the Newton iteration uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum LinearSolver {
-    /// Cholesky when its factor fits in `max_factor_bytes`, PCG otherwise
-    /// (decided from the symbolic analysis, done once per pattern).
+    /// Cholesky when its factor is within [`AutoLimits`] (memory and
+    /// estimated flops per factorisation), PCG otherwise; decided from the
+    /// symbolic analysis, done once per pattern.
     #[default]
     Auto,
     /// Sparse Cholesky (faer), symbolic once, numeric every step.
     Cholesky,
     /// Jacobi-preconditioned conjugate gradients (inexact Newton).
     Pcg,
+}
+
+/// When `Auto` prefers PCG over Cholesky.
+///
+/// Measured on 2 cores (see the `newton` benchmark): a factorisation runs at
+/// roughly 10 GFlop/s, so the default flop limit is about one second per
+/// Newton step. Well-conditioned 3D problems (Dirichlet handles) are
+/// usually faster with PCG well below that limit; ill-conditioned 2D
+/// problems (parameterisation, tiny elements) are much faster with Cholesky.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AutoLimits {
+    /// Largest factor (values of L) in bytes.
+    pub max_factor_bytes: usize,
+    /// Largest estimated flop count of one numeric factorisation.
+    pub max_factor_flops: f64,
+}
+
+impl Default for AutoLimits {
+    fn default() -> Self {
+        AutoLimits {
+            max_factor_bytes: 2 << 30,
+            max_factor_flops: 1e10,
+        }
+    }
 }
 
 /// How a linear system was prepared for this Newton step.
@@ -72,45 +97,41 @@ enum Backend {
 /// The Newton system for one pattern: backend state reused across iterations.
 pub struct LinearSystem {
     backend: Backend,
-    /// The symbolic analysis done to decide `Auto` (kept, for its counters).
-    analyzed_bytes: Option<usize>,
+    /// (bytes, flops) of the Cholesky factor, if a symbolic analysis was done.
+    analysis: Option<(usize, f64)>,
 }
 
 impl LinearSystem {
     /// Choose and set up the backend. `Auto` runs the symbolic analysis and
-    /// keeps Cholesky if L takes at most `max_factor_bytes`.
+    /// keeps Cholesky if the factor is within `limits`.
     pub fn new(
         pattern: &Pattern,
         choice: LinearSolver,
-        max_factor_bytes: usize,
+        limits: AutoLimits,
     ) -> Result<Self, FemError> {
-        let backend = match choice {
-            LinearSolver::Pcg => Backend::Pcg(Box::new(Pcg::new(pattern))),
+        let pcg = || Backend::Pcg(Box::new(Pcg::new(pattern)));
+        let (backend, analysis) = match choice {
+            LinearSolver::Pcg => (pcg(), None),
             LinearSolver::Cholesky => {
-                Backend::Cholesky(Box::new(CholeskyFactor::analyze(pattern)?))
+                let f = CholeskyFactor::analyze(pattern)?;
+                let a = (f.factor_bytes(), f.factor_flops());
+                (Backend::Cholesky(Box::new(f)), Some(a))
             }
             LinearSolver::Auto => match CholeskyFactor::analyze(pattern) {
-                Ok(f) if f.factor_bytes() <= max_factor_bytes => Backend::Cholesky(Box::new(f)),
                 Ok(f) => {
-                    let bytes = f.factor_bytes();
-                    drop(f);
-                    return Ok(LinearSystem {
-                        backend: Backend::Pcg(Box::new(Pcg::new(pattern))),
-                        analyzed_bytes: Some(bytes),
-                    });
+                    let a = (f.factor_bytes(), f.factor_flops());
+                    if a.0 <= limits.max_factor_bytes && a.1 <= limits.max_factor_flops {
+                        (Backend::Cholesky(Box::new(f)), Some(a))
+                    } else {
+                        drop(f);
+                        (pcg(), Some(a))
+                    }
                 }
                 // out of memory or index overflow in the analysis: the factor would not fit either
-                Err(_) => Backend::Pcg(Box::new(Pcg::new(pattern))),
+                Err(_) => (pcg(), None),
             },
         };
-        let analyzed_bytes = match &backend {
-            Backend::Cholesky(f) => Some(f.factor_bytes()),
-            Backend::Pcg(_) => None,
-        };
-        Ok(LinearSystem {
-            backend,
-            analyzed_bytes,
-        })
+        Ok(LinearSystem { backend, analysis })
     }
 
     /// The backend in use (`Cholesky` or `Pcg`, never `Auto`).
@@ -123,7 +144,12 @@ impl LinearSystem {
 
     /// Bytes of the Cholesky factor, if a symbolic analysis was done.
     pub fn factor_bytes(&self) -> Option<usize> {
-        self.analyzed_bytes
+        self.analysis.map(|a| a.0)
+    }
+
+    /// Estimated flops of one Cholesky factorisation, if a symbolic analysis was done.
+    pub fn factor_flops(&self) -> Option<f64> {
+        self.analysis.map(|a| a.1)
     }
 
     /// The Cholesky factor (for its counters), if that is the backend.
@@ -266,7 +292,7 @@ mod tests {
             LinearSolver::Pcg,
             LinearSolver::Auto,
         ] {
-            let mut sys = LinearSystem::new(&p, kind, usize::MAX).unwrap();
+            let mut sys = LinearSystem::new(&p, kind, AutoLimits::default()).unwrap();
             let mut vals = v.clone();
             let info = sys.prepare(&p, &mut vals, 0.0, 12).unwrap();
             let mut x = vec![0.0; n];
@@ -288,10 +314,24 @@ mod tests {
     #[test]
     fn auto_falls_back_to_pcg_when_the_factor_is_too_big() {
         let (p, _) = laplacian(20);
-        let sys = LinearSystem::new(&p, LinearSolver::Auto, 8).unwrap();
+        let tiny = AutoLimits {
+            max_factor_bytes: 8,
+            ..AutoLimits::default()
+        };
+        let sys = LinearSystem::new(&p, LinearSolver::Auto, tiny).unwrap();
         assert_eq!(sys.kind(), LinearSolver::Pcg);
         assert!(sys.factor_bytes().unwrap() > 8);
-        let sys = LinearSystem::new(&p, LinearSolver::Auto, usize::MAX).unwrap();
+        let few = AutoLimits {
+            max_factor_flops: 1.0,
+            ..AutoLimits::default()
+        };
+        assert_eq!(
+            LinearSystem::new(&p, LinearSolver::Auto, few)
+                .unwrap()
+                .kind(),
+            LinearSolver::Pcg
+        );
+        let sys = LinearSystem::new(&p, LinearSolver::Auto, AutoLimits::default()).unwrap();
         assert_eq!(sys.kind(), LinearSolver::Cholesky);
     }
 }

@@ -4,7 +4,7 @@ use ecc_runtime::filter::Filter;
 
 use serde::{Deserialize, Serialize};
 
-use crate::linear::LinearSolver;
+use crate::linear::{AutoLimits, LinearSolver};
 
 /// Per-iteration choice of the eigenvalue filter.
 ///
@@ -73,8 +73,8 @@ pub struct NewtonParams {
     pub adaptive_threshold: f64,
     /// Linear solver; `Auto` chooses from the symbolic factor size.
     pub linear_solver: LinearSolver,
-    /// `Auto` uses Cholesky only if L needs at most this many bytes.
-    pub max_factor_bytes: usize,
+    /// When `Auto` switches to PCG.
+    pub auto_limits: AutoLimits,
     /// The solver minimises `energy_scale`·E; energies and gradients reported
     /// and tested are scaled too (1/Σ|q| gives the area-weighted mean).
     pub energy_scale: f64,
@@ -110,7 +110,7 @@ impl Default for NewtonParams {
             filter_policy: FilterPolicy::Fixed,
             adaptive_threshold: 0.01,
             linear_solver: LinearSolver::Auto,
-            max_factor_bytes: 2 << 30,
+            auto_limits: AutoLimits::default(),
             energy_scale: 1.0,
             armijo_c1: 1e-4,
             backtrack: 0.5,
@@ -119,7 +119,7 @@ impl Default for NewtonParams {
             null_space_shift: 1e-10,
             shift_attempts: 12,
             pcg_max_iters: 20_000,
-            pcg_rel_max: 0.5,
+            pcg_rel_max: 0.1,
             pcg_rel_min: 1e-8,
         }
     }

@@ -38,7 +38,7 @@ pub struct NewtonSolver<const D: usize> {
     assembler: Assembler<D>,
     linear: LinearSystem,
     /// Parameters (may be changed between solves; `linear_solver` and
-    /// `max_factor_bytes` only take effect through [`NewtonSolver::set_linear_solver`]).
+    /// `auto_limits` only take effect through [`NewtonSolver::set_linear_solver`]).
     pub params: NewtonParams,
     g: Vec<f64>,
     values: Vec<f64>,
@@ -70,7 +70,7 @@ impl<const D: usize> NewtonSolver<D> {
         let nv = dofs.n_vertices();
         let assembler = Assembler::new(&terms, dofs)?;
         let pattern = assembler.pattern();
-        let linear = LinearSystem::new(pattern, params.linear_solver, params.max_factor_bytes)?;
+        let linear = LinearSystem::new(pattern, params.linear_solver, params.auto_limits)?;
         let n = pattern.n();
         let nnz = pattern.nnz();
         Ok(NewtonSolver {
@@ -91,11 +91,7 @@ impl<const D: usize> NewtonSolver<D> {
     /// Rebuild the linear backend (e.g. switch Cholesky ↔ PCG).
     pub fn set_linear_solver(&mut self, choice: LinearSolver) -> Result<(), FemError> {
         self.params.linear_solver = choice;
-        self.linear = LinearSystem::new(
-            self.assembler.pattern(),
-            choice,
-            self.params.max_factor_bytes,
-        )?;
+        self.linear = LinearSystem::new(self.assembler.pattern(), choice, self.params.auto_limits)?;
         Ok(())
     }
 
