@@ -233,3 +233,51 @@ fn gradient_and_hessian_match_central_differences_3d() {
         fd_check(&mut s, &x, &name);
     }
 }
+
+#[test]
+fn pcg_and_cholesky_give_the_same_elastic_newton_step() {
+    let (rest, tets) = tet_grid(2);
+    let fixed: Vec<usize> = (0..rest.len()).filter(|&v| rest[v][0] < 1e-9).collect();
+    let r = noise(3, 3 * rest.len());
+    let x0: Vec<[f64; 3]> = rest
+        .iter()
+        .enumerate()
+        .map(|(v, p)| {
+            if p[0] < 1e-9 {
+                *p
+            } else {
+                std::array::from_fn(|c| p[c] * (1.0 + 0.2 * p[0]) + 0.02 * r[3 * v + c])
+            }
+        })
+        .collect();
+    let mut steps = Vec::new();
+    for kind in [ecc_fem::LinearSolver::Cholesky, ecc_fem::LinearSolver::Pcg] {
+        let e = Arc::new(StableNeoHookean {
+            mu: 1.0,
+            lambda: 4.0,
+        });
+        let t: Vec<Box<dyn Term<3>>> =
+            vec![Box::new(Elastic::<_, Tet>::new(e, &rest, &tets).unwrap())];
+        let params = NewtonParams {
+            linear_solver: kind,
+            max_iters: 1,
+            pcg_rel_max: 1e-12,
+            pcg_rel_min: 1e-12,
+            ..Default::default()
+        };
+        let mut s = NewtonSolver::new(rest.len(), t, &fixed, params).unwrap();
+        let mut x = x0.clone();
+        let res = s.solve(&mut x).unwrap();
+        assert_eq!(res.iterations, 1);
+        assert_eq!(res.linear_solver, kind);
+        steps.push((x, res.records[0].step));
+    }
+    assert_eq!(steps[0].1, steps[1].1, "same line-search step");
+    let diff = steps[0]
+        .0
+        .iter()
+        .zip(&steps[1].0)
+        .flat_map(|(a, b)| (0..3).map(move |c| (a[c] - b[c]).abs()))
+        .fold(0.0, f64::max);
+    assert!(diff < 1e-8, "Cholesky and PCG steps differ by {diff}");
+}
