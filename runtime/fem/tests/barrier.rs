@@ -142,7 +142,7 @@ fn symmetric_dirichlet_never_inverts_a_tet() {
     use ecc_fem::Tet;
     use ecc_fem::quality::{count_inverted, min_signed_volume};
     let (rest, tets) = common::tet_grid(4);
-    let on_boundary = |p: &[f64; 3]| p.iter().any(|&c| c < 1e-9 || c > 1.0 - 1e-9);
+    let on_boundary = |p: &[f64; 3]| p.iter().any(|&c| !(1e-9..=1.0 - 1e-9).contains(&c));
     let boundary: Vec<usize> = (0..rest.len()).filter(|&v| on_boundary(&rest[v])).collect();
     let x0: Vec<[f64; 3]> = rest
         .iter()
