@@ -217,3 +217,22 @@ fn result_serialises_to_json() {
     assert_eq!(back.terms[0].name, "springs");
     assert!(back.terms[0].assembly_passes >= 1);
 }
+
+#[test]
+fn a_failed_start_still_serialises() {
+    let mut solver = NewtonSolver::new(
+        3,
+        vec![Box::new(Poisoned) as Box<dyn Term<2>>],
+        &[],
+        NewtonParams::default(),
+    )
+    .unwrap();
+    let mut x = vec![[1.0, 0.0]; 3];
+    let r = solver.solve(&mut x).unwrap();
+    assert!(r.energy.is_nan());
+    let json = serde_json::to_string(&r).unwrap();
+    assert!(json.contains("\"energy\":null"));
+    let back: ecc_fem::NewtonResult = serde_json::from_str(&json).unwrap();
+    assert!(back.energy.is_nan());
+    assert_eq!(back.status, r.status);
+}

@@ -1,10 +1,27 @@
 //! What a solve reports: per-iteration records, status and totals
 //! (serde-serialisable for JSON summaries).
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::assembly::{NonFiniteStencil, TermTiming};
 use crate::linear::LinearSolver;
+
+/// JSON has no NaN/∞: such values are written as `null` and read back as NaN.
+mod maybe_finite {
+    use super::*;
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if v.is_finite() {
+            s.serialize_some(v)
+        } else {
+            s.serialize_none()
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
+}
 
 /// Why the solver stopped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -26,7 +43,8 @@ pub enum NewtonStatus {
     NonFinite(NonFiniteStencil),
     /// The linear solve produced a non-finite or non-descent direction.
     BadDirection {
-        /// gᵀd (should be negative).
+        /// gᵀd (should be negative; `null` in JSON when not finite).
+        #[serde(with = "maybe_finite")]
         slope: f64,
     },
     /// Cholesky failed even with the largest diagonal shift.
@@ -57,7 +75,7 @@ pub struct IterationRecord {
     pub dx_inf: f64,
     /// Filter used for this step's Hessian.
     pub filter: String,
-    /// Trust-region ratio ρ of this step (adaptive filter only).
+    /// Trust-region ratio ρ of this step (adaptive filter only; `null` if not finite).
     pub rho: Option<f64>,
     /// Absolute diagonal shift used in the linear system.
     pub shift: f64,
@@ -99,11 +117,16 @@ pub struct NewtonResult {
     pub status: NewtonStatus,
     /// Newton steps taken.
     pub iterations: usize,
-    /// Scaled energy at the start and at the returned positions.
+    /// Scaled energy at the start and at the returned positions (NaN, `null`
+    /// in JSON, when it could not be evaluated, e.g. an inverted start).
+    #[serde(with = "maybe_finite")]
     pub initial_energy: f64,
+    #[serde(with = "maybe_finite")]
     pub energy: f64,
     /// ‖∇E‖∞ at the start and at the returned positions (scaled, free DOFs).
+    #[serde(with = "maybe_finite")]
     pub initial_grad_inf: f64,
+    #[serde(with = "maybe_finite")]
     pub grad_inf: f64,
     /// Unknowns of the reduced system.
     pub unknowns: usize,
