@@ -20,7 +20,8 @@
 //! `ECC_BENCH_TRIS` (default `10000,30000,100000,300000,1000000`),
 //! `ECC_BENCH_TETS` (default `10000,30000,100000,300000`),
 //! `ECC_BENCH_DIRECT_MAX_TETS` (largest tet mesh also run with Cholesky,
-//! default 300000), `ECC_BENCH_ITERS` (default 3), `ECC_BENCH_PARAM=0` to
+//! default 110000: the 300k-tet factor needs ≈2.9 GB and ≈1.6e12 flops,
+//! minutes per step on 2 cores), `ECC_BENCH_ITERS` (default 3), `ECC_BENCH_PARAM=0` to
 //! skip part 2, `ECC_BENCH_SCALING=0` to skip part 1.
 //! Rows are also printed as `csv,…` lines for machine reading.
 //!
@@ -179,7 +180,7 @@ fn run_tet(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
 fn scaling(iters: usize) {
     let tris = env_list("ECC_BENCH_TRIS", &[10_000, 30_000, 100_000, 300_000, 1_000_000]);
     let tets = env_list("ECC_BENCH_TETS", &[10_000, 30_000, 100_000, 300_000]);
-    let direct_max_tets = env_usize("ECC_BENCH_DIRECT_MAX_TETS", 300_000);
+    let direct_max_tets = env_usize("ECC_BENCH_DIRECT_MAX_TETS", 110_000);
     println!("\n== scaling: time per Newton iteration (mean of {iters} steps), seconds ==");
     print_header();
     for &t in &tris {
