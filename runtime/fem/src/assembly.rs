@@ -5,7 +5,7 @@
 //! the reduced gradient through the DOF→unknown table and its local Hessian
 //! (upper part) into the value array through the precomputed stencil→slot
 //! map. Stencils of one colour share no free vertex, so their writes are
-//! disjoint (see [`crate::colour`]). Per-stencil energies go to a per-term
+//! disjoint (greedy colouring, once per mesh). Per-stencil energies go to a per-term
 //! buffer and are summed deterministically. Local buffers live on the stack
 //! of each rayon job: the hot loop does not allocate.
 

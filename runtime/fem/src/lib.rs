@@ -26,17 +26,30 @@
 //!   parallel (rayon, colour by colour, no atomics, no allocation).
 //! * [`linear`]: faer sparse Cholesky (symbolic analysis once, numeric
 //!   factorisation into preallocated storage each step) or Jacobi PCG with an
-//!   inexact-Newton forcing term; `Auto` picks from the factor size. A small
+//!   inexact-Newton forcing term; `Auto` picks from the factor's memory and
+//!   flop estimates ([`AutoLimits`]). A small
 //!   relative diagonal shift handles the translation null space when nothing
 //!   is fixed.
 //! * [`NewtonSolver`]: the iteration, with [`NewtonParams`] (tolerances,
-//!   filter or adaptive filter, line search constants) and a serde-ready
+//!   filter and [`FilterPolicy`]: fixed, Chen et al. 2024 trust region, or
+//!   trust-region Newton; line search constants) and a serde-ready
 //!   [`NewtonResult`] (status, best iterate, per-iteration records with the
 //!   assembly / factorisation / solve / line-search time split, per-term
 //!   timings).
 //! * Helpers: [`param`] (surface parameterisation from a Tutte start, unit
 //!   area, mean-energy reporting), [`deform`] (tet deformation with fixed and
 //!   moved handles), [`quality`] (flipped / inverted element counts).
+//!
+//! ## Adding a term
+//!
+//! Implement [`Term`] for a struct holding its stencils (flat vertex list)
+//! and data, box it into the solver's term list, and the solver assembles
+//! it with the others: gravity is an arity-1 term with zero Hessian, lumped
+//! inertia ½ m‖x − x̃‖²/h² an arity-1 quadratic (see [`SoftAnchors`]), a
+//! ground barrier an arity-1 barrier term with its own `max_step`. A solver's
+//! terms can be reached again with [`NewtonSolver::term_mut`] to update their
+//! data (targets, x̃, weights) between solves. Everything is reported per
+//! term in [`NewtonResult::terms`].
 //!
 //! ## Example
 //!
