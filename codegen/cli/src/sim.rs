@@ -53,7 +53,9 @@ fn load_error(e: LoadError) -> EnergyError {
     match e {
         LoadError::Param { source, .. } => EnergyError::Param(source.to_string()),
         LoadError::NoSuchDim { .. } => EnergyError::Dimension(e.to_string()),
-        LoadError::Syntax { rendered, .. } => EnergyError::File(format!("\n{}", rendered.trim_end())),
+        LoadError::Syntax { rendered, .. } => {
+            EnergyError::File(format!("\n{}", rendered.trim_end()))
+        }
         other => EnergyError::File(other.to_string()),
     }
 }
@@ -75,7 +77,10 @@ impl CliEnergies {
                     )),
                     None => EnergyError::UnknownName {
                         name: name.to_string(),
-                        known: ecc_energies::names().iter().map(|s| s.to_string()).collect(),
+                        known: ecc_energies::names()
+                            .iter()
+                            .map(|s| s.to_string())
+                            .collect(),
                     },
                 });
             }
@@ -101,7 +106,10 @@ impl EnergySource for CliEnergies {
     }
 
     fn names(&self) -> Vec<String> {
-        ecc_energies::names().iter().map(|s| s.to_string()).collect()
+        ecc_energies::names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
     }
 }
 
