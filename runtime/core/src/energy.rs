@@ -5,9 +5,13 @@ use crate::spectral::Spectral;
 /// Static facts about an energy that solvers use.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct EnergyInfo {
-    /// Ψ → +∞ as det F → 0⁺ and Ψ = +∞ for det F ≤ 0 (SD, SARAP, MIPS,
-    /// Neo-Hookean with log J, …). Solvers must keep every element
-    /// uninverted (inversion-free line search).
+    /// Ψ is singular on det F = 0 (Ψ → +∞ as det F → 0⁺; SD, SARAP, MIPS,
+    /// Neo-Hookean with log J, Ogden with fractional powers, …). Ψ is `+∞`
+    /// on det F = 0 and wherever the formula is undefined (log J for J < 0);
+    /// where the formula is defined for det F < 0 (SD) it keeps its value
+    /// there, but that region is unreachable for a solver that starts
+    /// uninverted: solvers must keep every element uninverted
+    /// (inversion-free line search).
     pub barrier: bool,
     /// Ψ depends on F only through I2 = ‖F‖² and I3 = det F, so `psi_f` can
     /// skip the SVD (a line-search fast path).
