@@ -115,9 +115,14 @@ impl<const D: usize> Handle<D> {
         self.rest
             .iter()
             .map(|p| {
+                // p + (R − I)(p − c) + t: exactly p for the identity (pinned handles)
                 std::array::from_fn(|i| {
-                    let rp: f64 = (0..D).map(|j| r[i][j] * (p[j] - self.center[j])).sum();
-                    self.center[i] + rp + k.translate[i]
+                    let rp: f64 = (0..D)
+                        .map(|j| {
+                            (r[i][j] - if i == j { 1.0 } else { 0.0 }) * (p[j] - self.center[j])
+                        })
+                        .sum();
+                    p[i] + rp + k.translate[i]
                 })
             })
             .collect()

@@ -116,59 +116,69 @@ impl Camera {
     }
 }
 
-/// A depth buffer matching a picture.
+/// A depth buffer matching a picture, with a clip rectangle.
 pub struct ZBuffer {
     w: usize,
     z: Vec<f64>,
+    /// Pixels outside [x0, x1) × [y0, y1) are never drawn.
+    clip: (i64, i64, i64, i64),
 }
 
 impl ZBuffer {
-    /// Everything infinitely far.
+    /// Everything infinitely far; the whole picture drawable.
     pub fn new(pic: &Picture) -> Self {
         ZBuffer {
             w: pic.w,
             z: vec![f64::INFINITY; pic.w * pic.h],
+            clip: (0, 0, pic.w as i64, pic.h as i64),
         }
+    }
+
+    /// Only the viewport `(x, y, w, h)` drawable.
+    pub fn clipped(pic: &Picture, vp: (f64, f64, f64, f64)) -> Self {
+        let mut z = ZBuffer::new(pic);
+        z.clip = (
+            vp.0.max(0.0) as i64,
+            vp.1.max(0.0) as i64,
+            ((vp.0 + vp.2) as i64).min(pic.w as i64),
+            ((vp.1 + vp.3) as i64).min(pic.h as i64),
+        );
+        z
     }
 }
 
-/// Fill a screen-space triangle (`[x, y, depth]` per corner) with a z-test.
-/// `shade(bary, edge_px)` returns the colour or `None` to skip the pixel.
-pub fn triangle(
-    pic: &mut Picture,
-    zb: &mut ZBuffer,
+/// Call `f(pixel index)` for every pixel of a screen-space triangle that
+/// passes the depth test (nothing is written).
+pub fn cover(zb: &ZBuffer, p: [[f64; 3]; 3], mut f: impl FnMut(usize)) {
+    rasterize(zb, p, |k, _, _, _| f(k));
+}
+
+/// Visit the covered pixels passing the depth test: `visit(k, z, bary, edge_px)`.
+fn rasterize(
+    zb: &ZBuffer,
     p: [[f64; 3]; 3],
-    mut shade: impl FnMut([f64; 3], [f64; 3]) -> Option<Rgb>,
+    mut visit: impl FnMut(usize, f64, [f64; 3], [f64; 3]),
 ) {
     let area =
         (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
     if area.abs() < 1e-12 || !area.is_finite() {
         return;
     }
-    let x0 = p
-        .iter()
-        .map(|q| q[0])
-        .fold(f64::INFINITY, f64::min)
-        .floor()
-        .max(0.0) as i64;
-    let x1 = p
+    let (cx0, cy0, cx1, cy1) = zb.clip;
+    let x0 = (p.iter().map(|q| q[0]).fold(f64::INFINITY, f64::min).floor() as i64).max(cx0);
+    let x1 = (p
         .iter()
         .map(|q| q[0])
         .fold(f64::NEG_INFINITY, f64::max)
-        .ceil()
-        .min(pic.w as f64 - 1.0) as i64;
-    let y0 = p
-        .iter()
-        .map(|q| q[1])
-        .fold(f64::INFINITY, f64::min)
-        .floor()
-        .max(0.0) as i64;
-    let y1 = p
+        .ceil() as i64)
+        .min(cx1 - 1);
+    let y0 = (p.iter().map(|q| q[1]).fold(f64::INFINITY, f64::min).floor() as i64).max(cy0);
+    let y1 = (p
         .iter()
         .map(|q| q[1])
         .fold(f64::NEG_INFINITY, f64::max)
-        .ceil()
-        .min(pic.h as f64 - 1.0) as i64;
+        .ceil() as i64)
+        .min(cy1 - 1);
     // edge i is opposite corner i
     let edge_len: [f64; 3] = std::array::from_fn(|i| {
         let (a, b) = (p[(i + 1) % 3], p[(i + 2) % 3]);
@@ -192,11 +202,28 @@ pub fn triangle(
                 continue;
             }
             let dist: [f64; 3] = std::array::from_fn(|i| e[i] * area.abs() / edge_len[i]);
-            if let Some(c) = shade(e, dist) {
-                zb.z[k] = z;
-                pic.px[k] = c;
-            }
+            visit(k, z, e, dist);
         }
+    }
+}
+
+/// Fill a screen-space triangle (`[x, y, depth]` per corner) with a z-test.
+/// `shade(bary, edge_px)` returns the colour or `None` to skip the pixel.
+pub fn triangle(
+    pic: &mut Picture,
+    zb: &mut ZBuffer,
+    p: [[f64; 3]; 3],
+    mut shade: impl FnMut([f64; 3], [f64; 3]) -> Option<Rgb>,
+) {
+    let mut hits: Vec<(usize, f64, Rgb)> = Vec::new();
+    rasterize(zb, p, |k, z, e, dist| {
+        if let Some(c) = shade(e, dist) {
+            hits.push((k, z, c));
+        }
+    });
+    for (k, z, c) in hits {
+        zb.z[k] = z;
+        pic.px[k] = c;
     }
 }
 

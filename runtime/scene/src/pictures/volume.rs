@@ -3,7 +3,7 @@
 use ecc_mesh::tet_boundary_faces;
 
 use super::image::{Picture, Rgb, hex, mix, scale};
-use super::raster::{Camera, ZBuffer, cross, dot, normalize, sub, triangle};
+use super::raster::{Camera, ZBuffer, cover, cross, dot, normalize, sub, triangle};
 use super::{SS, View, title};
 
 const BODY: u32 = 0x6f9fd8;
@@ -184,6 +184,35 @@ fn draw_ground(
     }
 }
 
+/// Darken the ground where the body's vertical projection falls (a contact
+/// shadow): faces projected along `n` onto n·x = h, drawn into a mask.
+fn draw_shadow(
+    pic: &mut Picture,
+    zb: &ZBuffer,
+    cam: &Camera,
+    faces: &[[usize; 3]],
+    x: &[[f64; 3]],
+    n: [f64; 3],
+    h: f64,
+) {
+    let mut mask = vec![false; pic.px.len()];
+    for f in faces {
+        let p = f.map(|v| {
+            let d = dot(x[v], n) - h;
+            let q: [f64; 3] = std::array::from_fn(|i| x[v][i] - d * n[i]);
+            let mut s = cam.project(q);
+            s[2] *= 1.0 - 1e-4; // just in front of the floor
+            s
+        });
+        cover(zb, p, |k| mask[k] = true);
+    }
+    for (px, m) in pic.px.iter_mut().zip(&mask) {
+        if *m {
+            *px = scale(*px, 0.72);
+        }
+    }
+}
+
 /// The boundary of a tet mesh in each shot; the last shot is the main panel.
 pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View<'_>) -> Picture {
     let (w, h) = (view.size.0 * SS, view.size.1 * SS);
@@ -214,6 +243,7 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
     let mut zb = ZBuffer::new(&pic);
     if let Some((n, gh)) = view.ground {
         draw_ground(&mut pic, &mut zb, &cam, n, gh, centre, r);
+        draw_shadow(&mut pic, &zb, &cam, &faces, last, n, gh);
     }
     let scene = Scene3 {
         faces: &faces,
@@ -254,9 +284,13 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
                 hex(0xffffff),
             );
             let tcam = Camera::fit(centre, dir, up, 6.0 * r, &every, vp);
-            let mut tz = ZBuffer::new(&pic);
+            let mut tz = ZBuffer::clipped(
+                &pic,
+                (vp.0, y0 + 14.0 * SS as f64, vp.2, strip - 14.0 * SS as f64),
+            );
             if let Some((n, gh)) = view.ground {
                 draw_ground(&mut pic, &mut tz, &tcam, n, gh, centre, r);
+                draw_shadow(&mut pic, &tz, &tcam, &faces, &shots[i].1, n, gh);
             }
             let s = Scene3 {
                 faces: &faces,

@@ -12,6 +12,7 @@ use ecc_mesh::{
 };
 
 use crate::error::SceneError;
+use crate::handles::rotation;
 use crate::spec::{SceneFile, Shape};
 
 /// A validated mesh of one of the three kinds.
@@ -120,9 +121,50 @@ fn generate(file: &SceneFile, shape: Shape) -> (AnyMesh, String) {
     }
 }
 
-/// Apply `scale` then `translate` (2 or 3 components; 2 only for triangle meshes).
+/// The rotation matrix of `mesh.rotate` (degrees), if any.
+fn rotation_of(file: &SceneFile, tri: bool) -> Result<Option<[[f64; 3]; 3]>, SceneError> {
+    let Some(r) = &file.scene.mesh.rotate else {
+        return Ok(None);
+    };
+    let r: [f64; 3] = match r.len() {
+        3 => [r[0], r[1], r[2]],
+        1 if tri => [0.0, 0.0, r[0]],
+        n => {
+            return Err(SceneError::invalid(
+                "mesh.rotate",
+                format!(
+                    "expected a rotation vector [x, y, z] in degrees{}, got {n} components",
+                    if tri {
+                        " or [angle] for a planar mesh"
+                    } else {
+                        ""
+                    }
+                ),
+            ));
+        }
+    };
+    Ok(Some(rotation::<3>(r.map(f64::to_radians))))
+}
+
+/// Apply `scale`, `rotate` (about the bounding-box centre) and `translate`
+/// (2 or 3 components; 2 only for triangle meshes).
 fn transform(file: &SceneFile, positions: &mut [[f64; 3]], tri: bool) -> Result<(), SceneError> {
     let m = &file.scene.mesh;
+    if let Some(r) = rotation_of(file, tri)? {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for p in positions.iter() {
+            for c in 0..3 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        let ctr: [f64; 3] = std::array::from_fn(|c| 0.5 * (lo[c] + hi[c]));
+        for p in positions.iter_mut() {
+            let d: [f64; 3] = std::array::from_fn(|c| p[c] - ctr[c]);
+            *p = std::array::from_fn(|i| ctr[i] + (0..3).map(|j| r[i][j] * d[j]).sum::<f64>());
+        }
+    }
     let s = m.scale.unwrap_or(1.0);
     let t = match &m.translate {
         None => [0.0; 3],
@@ -147,6 +189,62 @@ fn transform(file: &SceneFile, positions: &mut [[f64; 3]], tri: bool) -> Result<
     Ok(())
 }
 
+/// An axis-aligned box (min, max).
+type Aabb = ([f64; 3], [f64; 3]);
+
+/// The `crop` box (3 components; 2 allowed for triangle meshes, z unbounded).
+fn crop_box(file: &SceneFile, tri: bool) -> Result<Option<Aabb>, SceneError> {
+    let Some(b) = &file.scene.mesh.crop else {
+        return Ok(None);
+    };
+    let get = |key: &str, v: &Vec<f64>, fill: f64| -> Result<[f64; 3], SceneError> {
+        match v.len() {
+            3 => Ok([v[0], v[1], v[2]]),
+            2 if tri => Ok([v[0], v[1], fill]),
+            n => Err(SceneError::invalid(
+                key,
+                format!(
+                    "expected {} components, got {n}",
+                    if tri { "2 or 3" } else { "3" }
+                ),
+            )),
+        }
+    };
+    let lo = get("mesh.crop.min", &b.min, f64::NEG_INFINITY)?;
+    let hi = get("mesh.crop.max", &b.max, f64::INFINITY)?;
+    if lo.iter().chain(&hi).any(|c| c.is_nan()) || (0..3).any(|c| lo[c] > hi[c]) {
+        return Err(SceneError::invalid(
+            "mesh.crop",
+            "`min` must be ≤ `max` in every component (and not NaN)",
+        ));
+    }
+    Ok(Some((lo, hi)))
+}
+
+/// Keep the elements whose vertices are all inside the box.
+fn crop<const K: usize>(
+    elements: Vec<[usize; K]>,
+    positions: &[[f64; 3]],
+    (lo, hi): Aabb,
+) -> Result<Vec<[usize; K]>, SceneError> {
+    let inside = |v: usize| {
+        positions
+            .get(v)
+            .is_some_and(|p| (0..3).all(|c| p[c] >= lo[c] && p[c] <= hi[c]))
+    };
+    let kept: Vec<[usize; K]> = elements
+        .into_iter()
+        .filter(|e| e.iter().all(|&v| inside(v)))
+        .collect();
+    if kept.is_empty() {
+        return Err(SceneError::invalid(
+            "mesh.crop",
+            "no element lies inside the box",
+        ));
+    }
+    Ok(kept)
+}
+
 /// Load `[mesh]` (file or generated), transform and validate it.
 /// `surface_ok`: a non-planar triangle mesh is acceptable (parameterisation).
 pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError> {
@@ -168,6 +266,9 @@ pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError
     match mesh {
         AnyMesh::Tri(mut m) => {
             transform(file, &mut m.positions, true)?;
+            if let Some(bx) = crop_box(file, true)? {
+                m.triangles = crop(std::mem::take(&mut m.triangles), &m.positions, bx)?;
+            }
             let planar = !surface_ok && m.positions.iter().all(|p| p[2] == 0.0);
             if !planar && !surface_ok {
                 return Err(SceneError::invalid(
@@ -197,6 +298,9 @@ pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError
                 ));
             }
             transform(file, &mut m.positions, false)?;
+            if let Some(bx) = crop_box(file, false)? {
+                m.tets = crop(std::mem::take(&mut m.tets), &m.positions, bx)?;
+            }
             let v = validate_tet(m, &opts).map_err(invalid)?;
             Ok(LoadedMesh {
                 kind: MeshKind::Volume(v.mesh),

@@ -63,9 +63,17 @@ pub struct MeshSpec {
     /// Uniform scale applied to the positions (before `translate`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<f64>,
-    /// Translation applied to the positions.
+    /// Rotation (a rotation vector, axis × degrees; `[angle]` for planar
+    /// meshes) about the bounding-box centre, applied after `scale`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotate: Option<Vec<f64>>,
+    /// Translation applied to the positions (after `rotate`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub translate: Option<Vec<f64>>,
+    /// Keep only the elements whose vertices all lie in this box (after
+    /// `scale` and `translate`): work on part of a large mesh.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub crop: Option<BoxSelect>,
 }
 
 /// Built-in generated shapes (ecc-mesh generators).

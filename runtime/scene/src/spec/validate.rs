@@ -115,6 +115,7 @@ fn check_mesh(m: &MeshSpec) -> R {
     positive("mesh.radius", m.radius)?;
     positive("mesh.scale", m.scale)?;
     finite_vec("mesh.translate", &m.translate)?;
+    finite_vec("mesh.rotate", &m.rotate)?;
     let want = match shape {
         Some(Shape::Box) => 3,
         _ => 2,
