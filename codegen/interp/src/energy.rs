@@ -43,10 +43,12 @@ pub struct InterpEnergy<const D: usize> {
     psi1_identically_zero: bool,
 }
 
-/// Ψ values that mean "outside the domain" are reported as +∞.
+/// Ψ values that mean "outside the domain" — NaN (log of a negative
+/// number), ±∞ (a pole such as I2/I3 at I3 = −0, or overflow) — are
+/// reported as +∞, as generated code does.
 #[inline]
 fn domain(psi: f64) -> f64 {
-    if psi.is_nan() { f64::INFINITY } else { psi }
+    if psi.is_finite() { psi } else { f64::INFINITY }
 }
 
 /// [I1, I2, I3] of the first D entries of σ.

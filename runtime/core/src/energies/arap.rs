@@ -17,6 +17,11 @@ fn psi<const D: usize>(s: &[f64; D]) -> f64 {
 }
 
 fn spectral<const D: usize>(s: &[f64; D]) -> Spectral<D> {
+    let psi = psi(s);
+    if !psi.is_finite() {
+        // Ψ overflowed (|σ| ≳ 1e154): no derivatives, as for any Ψ = +∞
+        return Spectral::infinite();
+    }
     let mut twist = [0.0; 3];
     let mut flip = [0.0; 3];
     for k in 0..Spectral::<D>::PAIRS {
@@ -25,7 +30,7 @@ fn spectral<const D: usize>(s: &[f64; D]) -> Spectral<D> {
         flip[k] = 2.0;
     }
     Spectral {
-        psi: psi(s),
+        psi,
         grad: std::array::from_fn(|i| 2.0 * (s[i] - 1.0)),
         scale: ScaleBlock::Diagonal([2.0; D]),
         twist,

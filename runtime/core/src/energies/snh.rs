@@ -88,12 +88,17 @@ impl Energy<2> for StableNeoHookean {
     fn spectral(&self, s: &[f64; 2]) -> Spectral<2> {
         let i2 = s[0] * s[0] + s[1] * s[1];
         let j = s[0] * s[1];
+        let psi = self.psi_inv(2, i2, j);
+        if !psi.is_finite() {
+            // outside the domain or overflowed: no derivatives (no ∞ − ∞ = NaN)
+            return Spectral::infinite();
+        }
         let (tp2, fp22, p3, p33) = self.derivs(2, i2, j);
         let a00 = tp2 + fp22 * s[0] * s[0] + s[1] * s[1] * p33;
         let a11 = tp2 + fp22 * s[1] * s[1] + s[0] * s[0] * p33;
         let a01 = p3 + fp22 * j + j * p33;
         Spectral {
-            psi: self.psi_inv(2, i2, j),
+            psi,
             grad: [tp2 * s[0] + p3 * s[1], tp2 * s[1] + p3 * s[0]],
             scale: ScaleBlock::Full([[a00, a01], [a01, a11]]),
             twist: [tp2 + p3, 0.0, 0.0],
@@ -131,6 +136,10 @@ impl Energy<3> for StableNeoHookean {
     fn spectral(&self, s: &[f64; 3]) -> Spectral<3> {
         let i2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
         let j = s[0] * s[1] * s[2];
+        let psi = self.psi_inv(3, i2, j);
+        if !psi.is_finite() {
+            return Spectral::infinite();
+        }
         let (tp2, fp22, p3, p33) = self.derivs(3, i2, j);
         let cof = [s[1] * s[2], s[2] * s[0], s[0] * s[1]];
         let mut a = [[0.0; 3]; 3];
@@ -147,7 +156,7 @@ impl Energy<3> for StableNeoHookean {
             flip[k] = tp2 - s[k] * p3;
         }
         Spectral {
-            psi: self.psi_inv(3, i2, j),
+            psi,
             grad: std::array::from_fn(|i| tp2 * s[i] + p3 * cof[i]),
             scale: ScaleBlock::Full(a),
             twist,
