@@ -3,7 +3,7 @@
 //!
 //! | size | per element | per solve | scaling |
 //! |---|---|---|---|
-//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 4 problems × 5 methods, ≤ 40 s each | tris 10k…1M, tets 10k…300k, 3 steps |
+//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 4 problems × 5 methods, ≤ 30 s each | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
 //! | `--quick` | 2 samples/class, 128 × 11 | same problems, ≤ 8 s each | tris 10k, 100k; tets 10k, 30k; 2 steps |
 //! | tiny (tests) | 1 sample, 2 energies, 3 classes | hand_1_i_f5000, 2 s | 2k tris, 1k tets, 1 step |
 //!
@@ -101,7 +101,7 @@ fn io(path: &Path, e: std::io::Error) -> ReportError {
 fn solve_limits(size: Size) -> SolveLimits {
     match size {
         Size::Full => SolveLimits {
-            seconds: 40.0,
+            seconds: 30.0,
             newton_iters: 300,
             proxy_iters: 5000,
         },
@@ -122,8 +122,8 @@ fn scaling_plan(size: Size) -> ScalingPlan {
     match size {
         Size::Full => ScalingPlan {
             tris: vec![10_000, 100_000, 300_000, 1_000_000],
-            tets: vec![10_000, 100_000, 300_000],
-            direct_max_tets: 300_000,
+            tets: vec![10_000, 30_000, 100_000, 300_000],
+            direct_max_tets: 100_000,
             iters: 3,
         },
         Size::Quick => ScalingPlan {
