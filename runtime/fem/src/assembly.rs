@@ -18,8 +18,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::dofs::DofMap;
 use crate::error::FemError;
+use crate::order::choose_order;
 use crate::parallel::{SharedMut, min_indexed, sum_indexed};
-use crate::pattern::{NO_SLOT, Pattern, StencilSet, TermPlan, build};
+use crate::pattern::{NO_SLOT, Pattern, StencilSet, TermPlan, build, validate};
 use crate::term::{MAX_STENCIL_DOFS, Term};
 
 /// A stencil produced a non-finite value where a finite one was required.
@@ -81,6 +82,13 @@ impl<const D: usize> Assembler<D> {
                 stencils: t.stencils(),
             })
             .collect();
+        for set in &sets {
+            validate(set, dofs.n_vertices(), D)?;
+        }
+        let dofs = match choose_order(dofs.n_vertices(), &sets) {
+            Some(order) => dofs.renumbered(&order),
+            None => dofs,
+        };
         let (pattern, plans) = build(&sets, &dofs)?;
         let psi = terms
             .iter()
@@ -185,82 +193,74 @@ impl<const D: usize> Assembler<D> {
         let gptr = SharedMut::new(grad);
         let hptr = hessian.as_mut().map(|(_, v)| SharedMut::new(v));
         let filter = hessian.as_ref().map(|(f, _)| *f);
-        let table = self.dofs.unknown_table();
         let mut total = 0.0;
         for (ti, term) in terms.iter().enumerate() {
             let t0 = Instant::now();
             let plan = &self.plans[ti];
-            let arity = term.arity();
-            let stencils = term.stencils();
             let k = plan.k;
             let n_local = plan.n_local;
             let psi_ptr = SharedMut::new(&mut self.psi[ti]);
             // first bad stencil, encoded as s·4 + what (what: 1 energy, 2 gradient, 3 hessian)
             let bad = AtomicUsize::new(usize::MAX);
             for c in 0..plan.colouring.n_colours() {
-                plan.colouring
-                    .colour(c)
-                    .par_iter()
-                    .with_min_len(64)
-                    .for_each_init(
-                        || {
-                            (
-                                [0.0f64; MAX_STENCIL_DOFS],
-                                [0.0f64; MAX_STENCIL_DOFS * MAX_STENCIL_DOFS],
-                            )
-                        },
-                        |(lg, lh), &s| {
-                            let s = s as usize;
-                            let st = &stencils[s * arity..(s + 1) * arity];
-                            let lg = &mut lg[..k];
-                            let lh = &mut lh[..k * k];
-                            let psi = term.evaluate(
-                                s,
-                                x,
-                                filter.unwrap_or(Filter::Clamp),
-                                lg,
-                                filter.map(|_| &mut *lh),
-                            );
-                            // SAFETY: index s is owned by this task (each stencil appears once).
-                            unsafe { psi_ptr.set(s, psi) };
-                            let what = if !psi.is_finite() {
-                                1
-                            } else if lg.iter().any(|v| !v.is_finite()) {
-                                2
-                            } else if filter.is_some() && lh.iter().any(|v| !v.is_finite()) {
-                                3
-                            } else {
-                                0
-                            };
-                            if what != 0 {
-                                bad.fetch_min(s * 4 + what, Ordering::Relaxed);
-                                return;
+                let (lo, hi) = (plan.colouring.ptr[c], plan.colouring.ptr[c + 1]);
+                (lo..hi).into_par_iter().with_min_len(64).for_each_init(
+                    || {
+                        (
+                            [0.0f64; MAX_STENCIL_DOFS],
+                            [0.0f64; MAX_STENCIL_DOFS * MAX_STENCIL_DOFS],
+                        )
+                    },
+                    |(lg, lh), p| {
+                        let s = plan.colouring.order[p] as usize;
+                        let lg = &mut lg[..k];
+                        let lh = &mut lh[..k * k];
+                        let psi = term.evaluate(
+                            s,
+                            x,
+                            filter.unwrap_or(Filter::Clamp),
+                            lg,
+                            filter.map(|_| &mut *lh),
+                        );
+                        // SAFETY: index s is owned by this task (each stencil appears once).
+                        unsafe { psi_ptr.set(s, psi) };
+                        let what = if !psi.is_finite() {
+                            1
+                        } else if lg.iter().any(|v| !v.is_finite()) {
+                            2
+                        } else if filter.is_some() && lh.iter().any(|v| !v.is_finite()) {
+                            3
+                        } else {
+                            0
+                        };
+                        if what != 0 {
+                            bad.fetch_min(s * 4 + what, Ordering::Relaxed);
+                            return;
+                        }
+                        for (&u, &ga) in plan.unknowns[p * k..(p + 1) * k].iter().zip(lg.iter()) {
+                            if u != NONE {
+                                // SAFETY: stencils of one colour share no free vertex,
+                                // so unknown u is written by this task only.
+                                unsafe { gptr.add(u as usize, scale * ga) };
                             }
-                            for (a, &ga) in lg.iter().enumerate() {
-                                let u = table[st[a / D] * D + a % D];
-                                if u != NONE {
-                                    // SAFETY: stencils of one colour share no free vertex,
-                                    // so unknown u is written by this task only.
-                                    unsafe { gptr.add(u as usize, scale * ga) };
-                                }
-                            }
-                            if let Some(hp) = hptr {
-                                let slots = &plan.slots[s * n_local..(s + 1) * n_local];
-                                let mut q = 0;
-                                for a in 0..k {
-                                    for b in a..k {
-                                        let sl = slots[q];
-                                        if sl != NO_SLOT {
-                                            // SAFETY: as above, slot sl couples two free
-                                            // vertices of this stencil only within this colour.
-                                            unsafe { hp.add(sl as usize, scale * lh[a * k + b]) };
-                                        }
-                                        q += 1;
+                        }
+                        if let Some(hp) = hptr {
+                            let slots = &plan.slots[p * n_local..(p + 1) * n_local];
+                            let mut q = 0;
+                            for a in 0..k {
+                                for b in a..k {
+                                    let sl = slots[q];
+                                    if sl != NO_SLOT {
+                                        // SAFETY: as above, slot sl couples two free
+                                        // vertices of this stencil only within this colour.
+                                        unsafe { hp.add(sl as usize, scale * lh[a * k + b]) };
                                     }
+                                    q += 1;
                                 }
                             }
-                        },
-                    );
+                        }
+                    },
+                );
             }
             let b = bad.load(Ordering::Relaxed);
             if b != usize::MAX {

@@ -28,6 +28,7 @@ impl Colouring {
     }
 
     /// The stencils of colour `c`.
+    #[cfg(test)]
     pub fn colour(&self, c: usize) -> &[u32] {
         &self.order[self.ptr[c]..self.ptr[c + 1]]
     }

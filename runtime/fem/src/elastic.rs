@@ -7,7 +7,11 @@
 //! when the energy supports it). For barrier energies (`info().barrier`)
 //! [`Term::max_step`] returns the first root of det Ds(x + α dx) = 0 in
 //! (0, 2] (quadratic in 2D, cubic in 3D, see [`crate::roots`]); det Dm > 0
-//! for every rest element, so det F and det Ds vanish together.
+//! for every rest element, so det F and det Ds vanish together. For barrier
+//! energies the term itself also enforces the domain: an element with
+//! det F ≤ 0 is `+∞` (zero derivatives) whatever the energy's formula gives
+//! there (the `Energy` contract says so, but e.g. ½(‖F‖² + ‖F⁻¹‖²) is finite
+//! for inverted F), so an inverted start is reported, never minimised.
 //!
 //! Triangles come in two flavours with the same [`Tri`] type: planar rest
 //! shapes ([`Elastic::planar`], 2D positions, signed area must be positive)
@@ -63,6 +67,30 @@ pub struct Elastic<E: ?Sized, S: Simplex> {
     rest: Vec<S::Rest>,
     barrier: bool,
     _kind: PhantomData<S>,
+}
+
+/// det Ds of a triangle (same sign as det F: det Dm > 0 for every rest shape).
+#[inline]
+fn tri_det(p: &[[f64; 2]; 3]) -> f64 {
+    (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
+}
+
+/// det Ds of a tet (same sign as det F).
+#[inline]
+fn tet_det(p: &[[f64; 3]; 4]) -> f64 {
+    let e = |k: usize| [p[k][0] - p[0][0], p[k][1] - p[0][1], p[k][2] - p[0][2]];
+    let (a, b, c) = (e(1), e(2), e(3));
+    a[0] * (b[1] * c[2] - b[2] * c[1]) - b[0] * (a[1] * c[2] - a[2] * c[1])
+        + c[0] * (a[1] * b[2] - a[2] * b[1])
+}
+
+/// A barrier element at det F ≤ 0: outside the domain (Ψ = +∞, zero derivatives).
+fn outside(grad: &mut [f64], hess: Option<&mut [f64]>) -> f64 {
+    grad.fill(0.0);
+    if let Some(h) = hess {
+        h.fill(0.0);
+    }
+    f64::INFINITY
 }
 
 fn rest_error(element: usize, e: RestError) -> FemError {
@@ -243,7 +271,11 @@ impl<E: Energy<2> + ?Sized + 'static> Term<2> for Elastic<E, Tri> {
     }
 
     fn value(&self, s: usize, x: &[[f64; 2]]) -> f64 {
-        tri_psi(&*self.energy, &self.rest[s], &self.nodes(s, x))
+        let p = self.nodes(s, x);
+        if self.barrier && !tri_det(&p).gt(&0.0) {
+            return f64::INFINITY;
+        }
+        tri_psi(&*self.energy, &self.rest[s], &p)
     }
 
     fn evaluate(
@@ -254,13 +286,11 @@ impl<E: Energy<2> + ?Sized + 'static> Term<2> for Elastic<E, Tri> {
         grad: &mut [f64],
         hess: Option<&mut [f64]>,
     ) -> f64 {
-        let ev = tri_eval(
-            &*self.energy,
-            &self.rest[s],
-            &self.nodes(s, x),
-            filter,
-            hess.is_some(),
-        );
+        let p = self.nodes(s, x);
+        if self.barrier && !tri_det(&p).gt(&0.0) {
+            return outside(grad, hess);
+        }
+        let ev = tri_eval(&*self.energy, &self.rest[s], &p, filter, hess.is_some());
         grad.copy_from_slice(ev.grad.as_slice());
         if let Some(h) = hess {
             // symmetric: column-major storage equals row-major
@@ -301,7 +331,11 @@ impl<E: Energy<3> + ?Sized + 'static> Term<3> for Elastic<E, Tet> {
     }
 
     fn value(&self, s: usize, x: &[[f64; 3]]) -> f64 {
-        tet_psi(&*self.energy, &self.rest[s], &self.nodes(s, x))
+        let p = self.nodes(s, x);
+        if self.barrier && !tet_det(&p).gt(&0.0) {
+            return f64::INFINITY;
+        }
+        tet_psi(&*self.energy, &self.rest[s], &p)
     }
 
     fn evaluate(
@@ -312,13 +346,11 @@ impl<E: Energy<3> + ?Sized + 'static> Term<3> for Elastic<E, Tet> {
         grad: &mut [f64],
         hess: Option<&mut [f64]>,
     ) -> f64 {
-        let ev = tet_eval(
-            &*self.energy,
-            &self.rest[s],
-            &self.nodes(s, x),
-            filter,
-            hess.is_some(),
-        );
+        let p = self.nodes(s, x);
+        if self.barrier && !tet_det(&p).gt(&0.0) {
+            return outside(grad, hess);
+        }
+        let ev = tet_eval(&*self.energy, &self.rest[s], &p, filter, hess.is_some());
         grad.copy_from_slice(ev.grad.as_slice());
         if let Some(h) = hess {
             h.copy_from_slice(ev.hess.as_slice());

@@ -89,6 +89,7 @@ pub mod elastic;
 pub mod error;
 pub mod linear;
 pub mod newton;
+mod order;
 mod parallel;
 pub mod param;
 pub mod pattern;

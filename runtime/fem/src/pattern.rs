@@ -101,14 +101,17 @@ impl Pattern {
     }
 }
 
-/// Per-term assembly plan: slot map and colouring.
+/// Per-term assembly plan: colouring, and per-stencil unknowns and slots
+/// stored in *processing order* (position p ↔ stencil `colouring.order[p]`).
 #[derive(Clone, Debug)]
 pub(crate) struct TermPlan {
     /// Local DOFs per stencil, k = arity·D.
     pub k: usize,
     /// Packed upper local entries per stencil, k(k+1)/2.
     pub n_local: usize,
-    /// `n_stencils × n_local` slots (or `NO_SLOT`).
+    /// `positions × k` unknowns of the local DOFs (`u32::MAX` = fixed).
+    pub unknowns: Vec<u32>,
+    /// `positions × n_local` slots (or `NO_SLOT`).
     pub slots: Vec<u32>,
     pub colouring: Colouring,
 }
@@ -167,7 +170,41 @@ pub(crate) fn validate(
     Ok(())
 }
 
-/// Build the pattern and the per-term plans.
+/// The first unknown of vertex `v` (`u32::MAX` if all its DOFs are fixed).
+fn first_unknown(table: &[u32], dim: usize, v: usize) -> u32 {
+    (0..dim)
+        .map(|c| table[v * dim + c])
+        .min()
+        .unwrap_or(u32::MAX)
+}
+
+/// Vertex adjacency in upper CSC form indexed by first unknown.
+struct VertexAdjacency<'a> {
+    dofs: &'a DofMap,
+    vptr: &'a [usize],
+    vrow: &'a [u32],
+}
+
+impl VertexAdjacency<'_> {
+    /// Emit the rows (unknowns ≤ j of adjacent vertices) of column j, ascending.
+    fn column_rows(&self, j: usize, mut emit: impl FnMut(u32)) {
+        let dim = self.dofs.dim();
+        let table = self.dofs.unknown_table();
+        let f = first_unknown(table, dim, self.dofs.dof(j) / dim) as usize;
+        for &q in &self.vrow[self.vptr[f]..self.vptr[f + 1]] {
+            let u = self.dofs.dof(q as usize) / dim;
+            for c in 0..dim {
+                let ui = table[u * dim + c];
+                if ui != u32::MAX && (ui as usize) <= j {
+                    emit(ui);
+                }
+            }
+        }
+    }
+}
+
+/// Build the pattern and the per-term plans. The DOF map may number its
+/// unknowns in any vertex order (vertex by vertex, components ascending).
 pub(crate) fn build(
     sets: &[StencilSet<'_>],
     dofs: &DofMap,
@@ -179,7 +216,13 @@ pub(crate) fn build(
     }
     let active: Vec<bool> = (0..nv).map(|v| dofs.vertex_has_free(v)).collect();
 
-    // vertex pairs (col ≥ row) as u64 keys col·2³² + row, plus every active diagonal
+    // Unknowns are numbered vertex by vertex (in some vertex order), so a
+    // vertex with a free DOF is identified by its first unknown f(v), and
+    // f orders vertices exactly as their unknowns are ordered.
+    let table = dofs.unknown_table();
+    let first = |v: usize| first_unknown(table, dim, v);
+
+    // vertex pairs as u64 keys f(col)·2³² + f(row), f(row) ≤ f(col), plus every active diagonal
     let mut keys: Vec<u64> = Vec::new();
     let mut touched = vec![false; nv];
     for set in sets {
@@ -191,48 +234,44 @@ pub(crate) fn build(
                 }
                 for &vb in &st[a + 1..] {
                     if active[vb] {
-                        let (r, c) = if va < vb { (va, vb) } else { (vb, va) };
+                        let (fa, fb) = (first(va), first(vb));
+                        let (r, c) = if fa < fb { (fa, fb) } else { (fb, fa) };
                         keys.push(((c as u64) << 32) | r as u64);
                     }
                 }
             }
         }
     }
-    keys.extend(
-        (0..nv)
-            .filter(|&v| active[v])
-            .map(|v| ((v as u64) << 32) | v as u64),
-    );
+    keys.extend((0..nv).filter(|&v| active[v]).map(|v| {
+        let f = first(v) as u64;
+        (f << 32) | f
+    }));
     keys.par_sort_unstable();
     keys.dedup();
 
-    // vertex-level upper CSC
-    let mut vptr = vec![0usize; nv + 1];
+    // vertex-level upper CSC, indexed by first unknown
+    let n = dofs.n_unknowns();
+    let mut vptr = vec![0usize; n + 1];
     for &k in &keys {
         vptr[(k >> 32) as usize + 1] += 1;
     }
-    for v in 0..nv {
-        vptr[v + 1] += vptr[v];
+    for q in 0..n {
+        vptr[q + 1] += vptr[q];
     }
     let vrow: Vec<u32> = keys.iter().map(|&k| (k & 0xffff_ffff) as u32).collect();
     drop(keys);
 
-    // DOF-level upper CSC over unknowns (unknowns are numbered in DOF order)
-    let n = dofs.n_unknowns();
-    let table = dofs.unknown_table();
+    // DOF-level upper CSC over unknowns: rows of column j are the unknowns
+    // ≤ j of the vertices adjacent to j's vertex, already in ascending order
+    let adj = VertexAdjacency {
+        dofs,
+        vptr: &vptr,
+        vrow: &vrow,
+    };
     let mut col_ptr = vec![0usize; n + 1];
     for j in 0..n {
-        let dj = dofs.dof(j);
-        let v = dj / dim;
         let mut cnt = 0;
-        for &u in &vrow[vptr[v]..vptr[v + 1]] {
-            for c in 0..dim {
-                let ui = table[u as usize * dim + c];
-                if ui != u32::MAX && (ui as usize) <= j {
-                    cnt += 1;
-                }
-            }
-        }
+        adj.column_rows(j, |_| cnt += 1);
         col_ptr[j + 1] = col_ptr[j] + cnt;
     }
     let nnz = col_ptr[n];
@@ -244,20 +283,12 @@ pub(crate) fn build(
         });
     }
     let mut row_idx = vec![0usize; nnz];
-    {
-        let mut p = 0;
-        for j in 0..n {
-            let v = dofs.dof(j) / dim;
-            for &u in &vrow[vptr[v]..vptr[v + 1]] {
-                for c in 0..dim {
-                    let ui = table[u as usize * dim + c];
-                    if ui != u32::MAX && (ui as usize) <= j {
-                        row_idx[p] = ui as usize;
-                        p += 1;
-                    }
-                }
-            }
-        }
+    for (j, &start) in col_ptr[..n].iter().enumerate() {
+        let mut p = start;
+        adj.column_rows(j, |ui| {
+            row_idx[p] = ui as usize;
+            p += 1;
+        });
     }
     let isolated: Vec<usize> = (0..n).filter(|&j| !touched[dofs.dof(j) / dim]).collect();
     let pattern = Pattern {
@@ -272,19 +303,30 @@ pub(crate) fn build(
         .map(|set| {
             let k = set.arity * dim;
             let n_local = k * (k + 1) / 2;
-            let n_st = set.stencils.len() / set.arity;
+            // colours list their stencils in increasing index order, so the
+            // term's own per-stencil data (vertex lists, rest shapes) is streamed
+            let colouring = colour_stencils(nv, set.arity, set.stencils, &active);
+            // per-stencil tables stored in processing order: streamed, not gathered
+            let n_st = colouring.order.len();
+            let mut unknowns = vec![u32::MAX; n_st * k];
+            unknowns
+                .par_chunks_mut(k.max(1))
+                .zip(colouring.order.par_iter())
+                .for_each(|(out, &s)| {
+                    let st = &set.stencils[s as usize * set.arity..(s as usize + 1) * set.arity];
+                    for (a, u) in out.iter_mut().enumerate() {
+                        *u = table[st[a / dim] * dim + a % dim];
+                    }
+                });
             let mut slots = vec![NO_SLOT; n_st * n_local];
             slots
                 .par_chunks_mut(n_local.max(1))
-                .enumerate()
-                .for_each(|(s, out)| {
-                    let st = &set.stencils[s * set.arity..(s + 1) * set.arity];
-                    let unk = |a: usize| table[st[a / dim] * dim + a % dim];
+                .zip(unknowns.par_chunks(k.max(1)))
+                .for_each(|(out, unk)| {
                     let mut q = 0;
                     for a in 0..k {
-                        let ia = unk(a);
                         for b in a..k {
-                            let ib = unk(b);
+                            let (ia, ib) = (unk[a], unk[b]);
                             if ia != u32::MAX && ib != u32::MAX {
                                 // in the pattern by construction
                                 out[q] = pattern
@@ -295,10 +337,10 @@ pub(crate) fn build(
                         }
                     }
                 });
-            let colouring = colour_stencils(nv, set.arity, set.stencils, &active);
             TermPlan {
                 k,
                 n_local,
+                unknowns,
                 slots,
                 colouring,
             }
@@ -332,12 +374,19 @@ mod tests {
         let plan = &plans[0];
         assert_eq!(plan.k, 6);
         assert_eq!(plan.n_local, 21);
-        // second triangle: local dofs 4,5 are vertex 3 (fixed)
-        let s1 = &plan.slots[21..42];
-        assert_eq!(s1.iter().filter(|&&x| x == NO_SLOT).count(), 21 - 10);
-        // first triangle, local (0,5) = unknowns (0, 5)
-        assert_eq!(plan.slots[5] as usize, p.slot(0, 5).unwrap());
         assert_eq!(plan.colouring.n_colours(), 2);
+        let pos = |s: u32| plan.colouring.order.iter().position(|&t| t == s).unwrap();
+        // second triangle: local dofs 4,5 are vertex 3 (fixed)
+        let p1 = pos(1);
+        let s1 = &plan.slots[21 * p1..21 * (p1 + 1)];
+        assert_eq!(s1.iter().filter(|&&x| x == NO_SLOT).count(), 21 - 10);
+        assert_eq!(
+            &plan.unknowns[6 * p1 + 4..6 * p1 + 6],
+            &[u32::MAX, u32::MAX]
+        );
+        // first triangle, local (0,5) = unknowns (0, 5)
+        let p0 = pos(0);
+        assert_eq!(plan.slots[21 * p0 + 5] as usize, p.slot(0, 5).unwrap());
     }
 
     #[test]

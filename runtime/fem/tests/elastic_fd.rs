@@ -169,10 +169,12 @@ fn fd_check<const D: usize>(s: &mut NewtonSolver<D>, x: &[[f64; D]], what: &str)
             "{what}: dE/dx[{k}] {fd} vs {}",
             ev.gradient[k]
         );
-        // column k of the Hessian
+        // column k of the Hessian (all DOFs are free here: every DOF has an unknown)
+        let uk = s.dofs().unknown(k).unwrap();
         for i in 0..n {
             let fdh = (gp[i] - gm[i]) / (2.0 * h);
-            let a = pat.slot(i, k).map_or(0.0, |p| hess[p]);
+            let ui = s.dofs().unknown(i).unwrap();
+            let a = pat.slot(ui, uk).map_or(0.0, |p| hess[p]);
             assert!(
                 (fdh - a).abs() <= 1e-5 * hmax.max(1.0),
                 "{what}: H[{i},{k}] {fdh} vs {a}"

@@ -117,13 +117,15 @@ pub struct NewtonResult {
     pub status: NewtonStatus,
     /// Newton steps taken.
     pub iterations: usize,
-    /// Scaled energy at the start and at the returned positions (NaN, `null`
-    /// in JSON, when it could not be evaluated, e.g. an inverted start).
+    /// Scaled energy at the start and at the returned positions; `+∞` (`null`
+    /// in JSON) when a stencil is outside its domain there (e.g. a barrier
+    /// energy started inverted) or returned NaN.
     #[serde(with = "maybe_finite")]
     pub initial_energy: f64,
     #[serde(with = "maybe_finite")]
     pub energy: f64,
-    /// ‖∇E‖∞ at the start and at the returned positions (scaled, free DOFs).
+    /// ‖∇E‖∞ at the start and at the returned positions (scaled, free DOFs);
+    /// `+∞` (`null` in JSON) when the gradient could not be evaluated.
     #[serde(with = "maybe_finite")]
     pub initial_grad_inf: f64,
     #[serde(with = "maybe_finite")]

@@ -22,9 +22,10 @@ use crate::term::Term;
 pub struct Evaluation {
     /// Scaled energy.
     pub energy: f64,
-    /// Scaled gradient over the unknowns.
+    /// Scaled gradient per vertex DOF (index v·D + c), zero on fixed DOFs.
     pub gradient: Vec<f64>,
-    /// Upper-CSC values of the scaled, filtered Hessian (see [`NewtonSolver::pattern`]).
+    /// Upper-CSC values of the scaled, filtered reduced Hessian over the
+    /// unknowns (see [`NewtonSolver::pattern`] and [`NewtonSolver::dofs`]).
     pub hessian: Option<Vec<f64>>,
 }
 
@@ -164,17 +165,21 @@ impl<const D: usize> NewtonSolver<D> {
         hessian: Option<Filter>,
     ) -> Result<Result<Evaluation, NonFiniteStencil>, FemError> {
         self.check_positions(x)?;
-        let mut gradient = vec![0.0; self.g.len()];
+        let mut reduced = vec![0.0; self.g.len()];
         let mut values = hessian.map(|_| vec![0.0; self.values.len()]);
         let h = hessian.zip(values.as_deref_mut());
-        Ok(self
-            .assembler
-            .assemble(&self.terms, x, self.params.energy_scale, &mut gradient, h)
-            .map(|energy| Evaluation {
+        let assembled =
+            self.assembler
+                .assemble(&self.terms, x, self.params.energy_scale, &mut reduced, h);
+        Ok(assembled.map(|energy| {
+            let mut gradient = vec![0.0; x.len() * D];
+            self.assembler.dofs().scatter(&reduced, &mut gradient);
+            Evaluation {
                 energy,
                 gradient,
                 hessian: values,
-            }))
+            }
+        }))
     }
 
     /// Minimise from `x` (fixed vertices keep their values in `x`).
@@ -210,7 +215,8 @@ impl<const D: usize> NewtonSolver<D> {
         // last relative shift that made a raw (unfiltered) Hessian factorable
         let mut raw_shift = 0.0f64;
         let mut initial: Option<(f64, f64)> = None;
-        let mut last = (f64::NAN, f64::NAN);
+        // (energy, ‖∇E‖∞) of the current positions, set by every exit path
+        let mut last: (f64, f64);
         let mut iter = 0;
 
         let status = loop {
@@ -239,7 +245,12 @@ impl<const D: usize> NewtonSolver<D> {
             times.assembly += t_assembly;
             let energy = match assembled {
                 Ok(e) => e,
-                Err(bad) => break NewtonStatus::NonFinite(bad),
+                Err(bad) => {
+                    // report the energy of x (+∞ if a stencil is outside its domain
+                    // or NaN) and an unknown (+∞) gradient norm, never NaN
+                    last = (self.assembler.energy(&self.terms, x, scale), f64::INFINITY);
+                    break NewtonStatus::NonFinite(bad);
+                }
             };
             let grad_inf = norm_inf(&self.g);
             let g0 = initial.get_or_insert((energy, grad_inf)).1;
@@ -382,7 +393,10 @@ impl<const D: usize> NewtonSolver<D> {
                 let e = self
                     .assembler
                     .assemble(&self.terms, x, scale, &mut self.g, None);
-                last = (e.unwrap_or(f64::NAN), norm_inf(&self.g));
+                last = match e {
+                    Ok(e) => (e, norm_inf(&self.g)),
+                    Err(_) => (self.assembler.energy(&self.terms, x, scale), f64::INFINITY),
+                };
                 break NewtonStatus::Interrupted;
             }
         };
