@@ -122,10 +122,9 @@ fn check_header(text: &str, span: Span) -> Result<(), Error> {
         } else {
             format!("`{tok}`")
         };
-        (
-            shown,
-            Span::new(span.start + p, span.start + p + tok.len().max(1)),
-        )
+        // An empty token is the end of the statement: an empty span there
+        // (one byte wide would reach past the end of the text).
+        (shown, Span::new(span.start + p, span.start + p + tok.len()))
     };
     let mut pos = skip_ws(lead + kw_len);
     if kw != "psi" {
