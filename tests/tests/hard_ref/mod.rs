@@ -6,6 +6,7 @@
 //! test files (`mod hard_ref;`).
 #![allow(dead_code)]
 
+pub mod check;
 pub mod dd;
 pub mod energies;
 pub mod fd;
