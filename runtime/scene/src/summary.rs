@@ -37,7 +37,8 @@ pub struct SolvePoint {
     /// Scaled objective.
     #[serde(with = "finite_or_null")]
     pub energy: f64,
-    /// Seconds since the run's first solve started.
+    /// Seconds inside Newton solves since the run's first solve started
+    /// (time between solves, e.g. writing frames, is not counted).
     pub seconds: f64,
 }
 

@@ -11,7 +11,7 @@
 //!   the uv map (a good map keeps squares square), next to the uv layout
 //!   coloured by isometric distortion max(σ₁, 1/σ₂).
 //! * [`convergence`]: ‖∇E‖∞ on a log scale against Newton iteration (per
-//!   solve) and against wall time, with the tolerance.
+//!   solve) and against the time spent in Newton solves, with the tolerance.
 //!
 //! Everything is drawn at twice the size and box-filtered down (anti-aliasing).
 

@@ -201,8 +201,9 @@ pub fn planar(
     } else {
         0.0
     };
+    // the main panel frames the result; thumbnails share one framing of all shots
     let fit = Fit2::new(
-        &every,
+        last,
         (
             margin,
             top,

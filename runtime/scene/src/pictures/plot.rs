@@ -1,6 +1,6 @@
 //! The convergence plot: log₁₀ ‖∇E‖∞ against Newton iteration (each solve
-//! restarts at 0, curves coloured by frame) and against wall time since the
-//! first solve, with the stopping tolerance dashed.
+//! restarts at 0, curves coloured by frame) and against the cumulative time
+//! spent inside Newton solves, with the stopping tolerance dashed.
 
 use super::image::{Picture, Rgb, hex};
 use super::{SS, ramp, title};
@@ -186,7 +186,7 @@ pub fn convergence(solves: &[SolveLog], tol: f64, name: &str, size: (usize, usiz
         "max |grad E|",
         true,
     );
-    panels[1].axes(&mut pic, "wall time (s)", "max |grad E|", false);
+    panels[1].axes(&mut pic, "time in Newton solves (s)", "max |grad E|", false);
     let frames = solves.iter().map(|l| l.frame).max().unwrap_or(1).max(1);
     let first = solves.iter().map(|l| l.frame).min().unwrap_or(1);
     let colour = |f: usize| -> Rgb {

@@ -239,7 +239,10 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
         w as f64 - 2.0 * margin,
         h as f64 - top - strip - margin,
     );
-    let cam = Camera::fit(centre, dir, up, 6.0 * r, &every, main_vp);
+    // the main panel frames the result (with a ground: the whole motion
+    // above it); thumbnails share one framing of all shots
+    let main_pts: &[[f64; 3]] = if view.ground.is_some() { &every } else { last };
+    let cam = Camera::fit(centre, dir, up, 6.0 * r, main_pts, main_vp);
     let mut zb = ZBuffer::new(&pic);
     if let Some((n, gh)) = view.ground {
         draw_ground(&mut pic, &mut zb, &cam, n, gh, centre, r);

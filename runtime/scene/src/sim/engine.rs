@@ -81,7 +81,9 @@ pub struct Engine<const D: usize> {
     pub timings: Vec<TermTiming>,
     /// Set when a solve failed in a way that makes further frames meaningless.
     pub stopped: Option<String>,
-    clock: Instant,
+    /// Seconds spent inside Newton solves so far (the time axis of the
+    /// convergence plot: output writing between frames is not counted).
+    solve_seconds: f64,
 }
 
 fn downcast<const D: usize, T: Term<D>>(t: &dyn Term<D>) -> Option<&T> {
@@ -121,13 +123,13 @@ impl<const D: usize> Engine<D> {
             log: Vec::new(),
             timings: Vec::new(),
             stopped: None,
-            clock: Instant::now(),
+            solve_seconds: 0.0,
         }
     }
 
-    /// Restart the wall clock used for the convergence-vs-time plot.
-    pub fn start_clock(&mut self) {
-        self.clock = Instant::now();
+    /// Seconds spent inside Newton solves so far.
+    pub fn solve_seconds(&self) -> f64 {
+        self.solve_seconds
     }
 
     fn term(&self, slot: usize) -> &dyn Term<D> {
@@ -167,19 +169,25 @@ impl<const D: usize> Engine<D> {
 
     /// One Newton solve from `self.x`, logged and observed.
     fn solve(&mut self, frame: usize, obs: &mut dyn Observer) -> NewtonResult {
-        let clock = self.clock;
+        let clock = Instant::now();
+        let offset = self.solve_seconds;
         let mut points = Vec::new();
         let mut x = std::mem::take(&mut self.x);
+        // a record describes the iterate at the *start* of its step: it is
+        // plotted at the time that step began (the end of the previous one)
+        let mut began = offset;
         let result = self.solver.solve_with(&mut x, |rec: &IterationRecord, _| {
             points.push(SolvePoint {
                 grad_inf: rec.grad_inf,
                 energy: rec.energy,
-                seconds: clock.elapsed().as_secs_f64(),
+                seconds: began,
             });
+            began = offset + clock.elapsed().as_secs_f64();
             obs.iteration(frame, rec);
             std::ops::ControlFlow::Continue(())
         });
         self.x = x;
+        self.solve_seconds += clock.elapsed().as_secs_f64();
         let result = match result {
             Ok(r) => r,
             Err(e) => {
@@ -191,7 +199,7 @@ impl<const D: usize> Engine<D> {
         points.push(SolvePoint {
             grad_inf: result.grad_inf,
             energy: result.energy,
-            seconds: clock.elapsed().as_secs_f64(),
+            seconds: began,
         });
         for t in &result.terms {
             match self.timings.iter_mut().find(|a| a.name == t.name) {

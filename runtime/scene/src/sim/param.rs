@@ -143,13 +143,16 @@ pub(crate) fn run_parameterization(
     let clock = Instant::now();
     let t_solve = Instant::now();
     let mut points = Vec::new();
+    // each record is plotted at the time its step began
+    let mut began = 0.0;
     let result = solver
         .solve_with(&mut uv, |rec, _| {
             points.push(SolvePoint {
                 grad_inf: rec.grad_inf,
                 energy: rec.energy,
-                seconds: clock.elapsed().as_secs_f64(),
+                seconds: began,
             });
+            began = clock.elapsed().as_secs_f64();
             obs.iteration(1, rec);
             std::ops::ControlFlow::Continue(())
         })
@@ -157,7 +160,7 @@ pub(crate) fn run_parameterization(
     points.push(SolvePoint {
         grad_inf: result.grad_inf,
         energy: result.energy,
-        seconds: clock.elapsed().as_secs_f64(),
+        seconds: began,
     });
     let log = SolveLog {
         frame: 1,

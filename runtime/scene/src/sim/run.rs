@@ -582,7 +582,6 @@ where
         output_seconds += t.elapsed().as_secs_f64();
     }
     obs.start(&file.name(), frames);
-    engine.start_clock();
     for frame in 1..=frames {
         let s = engine.step_frame(frame, obs);
         obs.frame_done(&s);

@@ -40,6 +40,25 @@ fn finite_vec(key: &str, v: &Option<Vec<f64>>) -> R {
     Ok(())
 }
 
+/// The largest generated mesh a scene may ask for (elements). Far beyond
+/// what a scene can simulate on one machine, and small enough that the
+/// generator's index arithmetic and allocations cannot overflow or abort.
+pub const MAX_GENERATED_ELEMENTS: u128 = 50_000_000;
+
+/// The element count of a generated shape must be at most
+/// [`MAX_GENERATED_ELEMENTS`] (computed without overflow).
+fn generated_size(key: &str, elements: u128, formula: &str) -> R {
+    if elements > MAX_GENERATED_ELEMENTS {
+        return Err(bad(
+            key,
+            format!(
+                "asks for {elements} elements ({formula}); at most {MAX_GENERATED_ELEMENTS} are supported"
+            ),
+        ));
+    }
+    Ok(())
+}
+
 fn at_least_one(key: &str, v: Option<usize>) -> R {
     match v {
         Some(0) => Err(bad(key, "must be at least 1")),
@@ -130,6 +149,33 @@ fn check_mesh(m: &MeshSpec) -> R {
         if c.contains(&0) {
             return Err(bad("mesh.cells", "every entry must be at least 1"));
         }
+    }
+    // sizes are checked before anything is generated
+    let n = |v: usize| v as u128;
+    match shape {
+        Some(Shape::Bar) => {
+            let r = n(m.resolution.unwrap_or(2));
+            let tets = r.saturating_mul(r).saturating_mul(r).saturating_mul(24);
+            generated_size("mesh.resolution", tets, "24 resolution³ tets")?;
+        }
+        Some(Shape::Disk) => {
+            let r = n(m.rings.unwrap_or(8));
+            let tris = r.saturating_mul(r).saturating_mul(6);
+            generated_size("mesh.rings", tris, "6 rings² triangles")?;
+        }
+        Some(Shape::Box) | Some(Shape::Grid)
+            if m.cells.as_ref().is_some_and(|c| c.len() == want) =>
+        {
+            let c = m.cells.as_deref().unwrap_or_default();
+            let cells = c.iter().fold(1u128, |p, &x| p.saturating_mul(n(x)));
+            let (per, what) = if shape == Some(Shape::Box) {
+                (6, "6 tets per cell")
+            } else {
+                (2, "2 triangles per cell")
+            };
+            generated_size("mesh.cells", cells.saturating_mul(per), what)?;
+        }
+        _ => {}
     }
     if let Some(s) = &m.size {
         if s.len() != want {
