@@ -200,16 +200,22 @@ mod tests {
     #[test]
     fn svd_reconstructs_and_keeps_small_sigma_accurate() {
         // F = R1 diag(1.5, 1e-6 ... ) R2 with simple rotations, in double-double
-        let (c, s) = (0.6, 0.8);
-        let r1 = [c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0];
-        let r2 = [1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c];
+        // Pythagorean rotations (3/5, 4/5), built in double-double so they are orthogonal to ≈1e-32
+        let (c, s, o, z) = (
+            Dd::from_ratio(3, 5),
+            Dd::from_ratio(4, 5),
+            Dd::one(),
+            Dd::zero(),
+        );
+        let r1 = [c, -s, z, s, c, z, z, z, o];
+        let r2 = [o, z, z, z, c, -s, z, s, c];
         let sig = [1.5, 0.7, -1e-6];
         let mut f = [Dd::zero(); 9];
         for i in 0..3 {
             for j in 0..3 {
                 let mut acc = Dd::zero();
                 for k in 0..3 {
-                    acc = acc + Dd::from_f64(r1[i * 3 + k] * sig[k]) * Dd::from_f64(r2[j * 3 + k]);
+                    acc = acc + r1[i * 3 + k] * Dd::from_f64(sig[k]) * r2[j * 3 + k];
                 }
                 f[i * 3 + j] = acc;
             }
