@@ -602,6 +602,14 @@ where
         }
     }
     let mut warnings = ctx.loaded.warnings.clone();
+    let fx = &file.scene.effects;
+    if fx.gravity.is_some() && fx.handles.is_empty() && fx.ground.is_none() && fx.inertia.is_none()
+    {
+        warnings.push(
+            "gravity without handles, a ground or inertia has no minimiser: the body falls forever"
+                .into(),
+        );
+    }
     let bad: Vec<String> = stats
         .iter()
         .filter(|s| !s.converged)

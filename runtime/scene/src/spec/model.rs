@@ -402,7 +402,7 @@ pub struct OutputSpec {
     /// Write `result.png` and `convergence.png` (default true).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub pictures: Option<bool>,
-    /// Picture size `[width, height]` in pixels (default `[960, 720]`).
+    /// Picture size `[width, height]` in pixels, 64–2048 (default `[960, 720]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub image_size: Option<Vec<usize>>,
     /// Camera azimuth and elevation in degrees (default `[35, 25]`).

@@ -59,9 +59,16 @@ fn generated_size(key: &str, elements: u128, formula: &str) -> R {
     Ok(())
 }
 
+/// The largest frame count, step count or key frame accepted (a guard
+/// against typos such as `frames = 1e9`).
+pub const MAX_FRAMES: usize = 1_000_000;
+
 fn at_least_one(key: &str, v: Option<usize>) -> R {
     match v {
         Some(0) => Err(bad(key, "must be at least 1")),
+        Some(n) if n > MAX_FRAMES => {
+            Err(bad(key, format!("must be at most {MAX_FRAMES}, got {n}")))
+        }
         _ => Ok(()),
     }
 }
@@ -246,6 +253,14 @@ fn check_effects(fx: &Effects) -> R {
     }
     for (k, h) in fx.handles.iter().enumerate() {
         finite_vec(&format!("effects.handles[{k}].center"), &h.center)?;
+        for (j, key) in h.keys.iter().enumerate() {
+            if key.frame > MAX_FRAMES as f64 {
+                return Err(bad(
+                    &format!("effects.handles[{k}].keys[{j}].frame"),
+                    format!("must be at most {MAX_FRAMES}"),
+                ));
+            }
+        }
         if h.ids.as_ref().is_some_and(|ids| ids.is_empty()) {
             return Err(bad(
                 &format!("effects.handles[{k}].ids"),
@@ -326,11 +341,11 @@ fn check_solver(s: &SolverSpec) -> R {
 fn check_output(o: &OutputSpec) -> R {
     at_least_one("output.every", o.every)?;
     if let Some(s) = &o.image_size
-        && (s.len() != 2 || s.iter().any(|v| !(64..=8192).contains(v)))
+        && (s.len() != 2 || s.iter().any(|v| !(64..=2048).contains(v)))
     {
         return Err(bad(
             "output.image_size",
-            "expected [width, height], each between 64 and 8192 pixels",
+            "expected [width, height], each between 64 and 2048 pixels",
         ));
     }
     if let Some(c) = &o.camera
