@@ -105,7 +105,7 @@ impl SceneFile {
         }
     }
 
-    /// Where a dotted key is written (see [`super::locate`]).
+    /// Where a dotted key is written (best effort: the key's line, else its table's header).
     pub fn position_of(&self, key: &str) -> Option<Location> {
         let text = self.text.as_deref()?;
         let outline = Outline::new(text);

@@ -7,7 +7,7 @@
 //! * **lumped**: vertex v gets m_v = Σ_{q ∋ v} m_q/(d+1); stencils are single
 //!   vertices with block m_v I_d;
 //! * **consistent**: for linear shape functions ∫ N_a N_b = |q|(1 + δ_ab)/((d+1)(d+2)),
-//!   so M_q[a][b] = m_q (1 + δ_ab)/((d+1)(d+2)) ⊗ I_d; stencils are elements.
+//!   so M_q\[a\]\[b\] = m_q (1 + δ_ab)/((d+1)(d+2)) ⊗ I_d; stencils are elements.
 //!   Both have the same total mass Σ_q m_q.
 //!
 //! A mass matrix is only ever built through [`MassMatrix::build`], which
@@ -89,7 +89,7 @@ impl<const D: usize> MassMatrix<D> {
         self.masses.iter().sum()
     }
 
-    /// Scalar coupling M_s[a][b] of stencil `s` (times I_d).
+    /// Scalar coupling M_s\[a\]\[b\] of stencil `s` (times I_d).
     #[inline]
     pub fn coupling(&self, s: usize, a: usize, b: usize) -> f64 {
         match self.kind {
