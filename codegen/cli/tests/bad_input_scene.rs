@@ -113,6 +113,38 @@ fn scene_values_out_of_range_or_not_finite() {
 }
 
 #[test]
+fn scene_generated_mesh_too_large() {
+    // These used to overflow the generator's index arithmetic (a panic) or
+    // abort on a failed multi-terabyte allocation.
+    let s = Scratch::new();
+    for (mesh, parts) in [
+        (
+            "generate = \"bar\"\nresolution = 100000000\n",
+            &["scene.toml:3:1: `mesh.resolution`: asks for 24000000000000000000000000 elements"][..],
+        ),
+        (
+            "generate = \"grid\"\ncells = [100000000, 100000000]\n",
+            &["`mesh.cells`: asks for", "at most 50000000 are supported"][..],
+        ),
+        (
+            "generate = \"box\"\ncells = [9223372036854775807, 2, 2]\n",
+            &["`mesh.cells`: asks for"][..],
+        ),
+        (
+            "generate = \"disk\"\nrings = 1000000000\n",
+            &["`mesh.rings`: asks for"][..],
+        ),
+        (
+            "generate = \"bar\"\nresolution = 9223372036854775807\n",
+            &["`mesh.resolution`: asks for"][..],
+        ),
+    ] {
+        let e = sim_fails(&s, &format!("[mesh]\n{mesh}{ARAP}"), &[]);
+        says(&e, parts);
+    }
+}
+
+#[test]
 fn scene_unknown_energy_or_dimension() {
     let s = Scratch::new();
     let e = sim_fails(

@@ -66,6 +66,14 @@ pub const MAX_FRAMES: usize = 1_000_000;
 fn at_least_one(key: &str, v: Option<usize>) -> R {
     match v {
         Some(0) => Err(bad(key, "must be at least 1")),
+        _ => Ok(()),
+    }
+}
+
+/// A frame or step count: at least 1, at most [`MAX_FRAMES`].
+fn count(key: &str, v: Option<usize>) -> R {
+    at_least_one(key, v)?;
+    match v {
         Some(n) if n > MAX_FRAMES => {
             Err(bad(key, format!("must be at most {MAX_FRAMES}, got {n}")))
         }
@@ -75,7 +83,7 @@ fn at_least_one(key: &str, v: Option<usize>) -> R {
 
 /// All mesh-independent checks of a scene.
 pub fn check(scene: &Scene) -> R {
-    at_least_one("frames", scene.frames)?;
+    count("frames", scene.frames)?;
     check_mesh(&scene.mesh)?;
     check_energy(&scene.energy)?;
     check_effects(&scene.effects)?;
@@ -224,7 +232,7 @@ fn check_effects(fx: &Effects) -> R {
     finite_vec("effects.gravity", &fx.gravity)?;
     if let Some(i) = &fx.inertia {
         positive("effects.inertia.dt", Some(i.dt))?;
-        at_least_one("effects.inertia.steps_per_frame", i.steps_per_frame)?;
+        count("effects.inertia.steps_per_frame", i.steps_per_frame)?;
         finite_vec("effects.inertia.velocity", &i.velocity)?;
     }
     if let Some(d) = &fx.damping {
@@ -300,7 +308,7 @@ fn check_effects(fx: &Effects) -> R {
                 format!("must be \"x\", \"y\" or \"z\", got \"{a}\""),
             ));
         }
-        at_least_one("effects.interpolate.steps", i.steps)?;
+        count("effects.interpolate.steps", i.steps)?;
         if fx.handles.iter().any(|h| !h.keys.is_empty()) {
             return Err(bad(
                 "effects.handles",
@@ -335,11 +343,11 @@ fn check_solver(s: &SolverSpec) -> R {
         return Err(bad("solver.tol_rel", format!("must be in [0, 1), got {r}")));
     }
     at_least_one("solver.max_iters", s.max_iters)?;
-    at_least_one("solver.substeps", s.substeps)
+    count("solver.substeps", s.substeps)
 }
 
 fn check_output(o: &OutputSpec) -> R {
-    at_least_one("output.every", o.every)?;
+    count("output.every", o.every)?;
     if let Some(s) = &o.image_size
         && (s.len() != 2 || s.iter().any(|v| !(64..=2048).contains(v)))
     {
