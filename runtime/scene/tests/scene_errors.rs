@@ -173,3 +173,21 @@ fn dimension_and_shape_mismatches() {
     assert_eq!(e.key(), Some("effects.ground.height"));
     assert!(e.to_string().contains("strictly above"), "{e}");
 }
+
+#[test]
+fn generated_meshes_too_large_are_refused_before_building() {
+    let e = dry("[mesh]\ngenerate = \"bar\"\nresolution = 100000000\n[energy]\nname = \"arap\"\n");
+    assert_eq!(e.key(), Some("mesh.resolution"));
+    let m = e.to_string();
+    assert!(
+        m.contains("asks for 24000000000000000000000000 elements"),
+        "{m}"
+    );
+    assert!(m.contains("at most 50000000"), "{m}");
+    let e = dry(
+        "[mesh]\ngenerate = \"box\"\ncells = [9223372036854775807, 2, 2]\n[energy]\nname = \"arap\"\n",
+    );
+    assert!(e.to_string().contains("`mesh.cells`: asks for"), "{e}");
+    let e = dry("[mesh]\ngenerate = \"disk\"\nrings = 1000000000\n[energy]\nname = \"arap\"\n");
+    assert_eq!(e.key(), Some("mesh.rings"));
+}
