@@ -28,19 +28,23 @@ fn run(name: &str, policy: FilterPolicy) -> Parameterization {
     p
 }
 
+/// The hand's uniform Tutte start is extremely distorted; the paper's fixed
+/// clamp filter needs ~230 steps (see BENCHMARKS.md), the trust-region Newton
+/// policy ~80, which keeps this test fast.
 #[test]
 fn sd_hand_1_i_f5000() {
-    let fixed = run("hand_1_i_f5000.obj", FilterPolicy::Fixed);
-    // the trust-region Newton policy reaches the same minimum in far fewer steps
-    let newton = run("hand_1_i_f5000.obj", FilterPolicy::TrustRegionNewton);
-    assert!(newton.result.iterations < fixed.result.iterations);
-    assert!((newton.result.energy - fixed.result.energy).abs() < 1e-3 * fixed.result.energy);
+    let p = run("hand_1_i_f5000.obj", FilterPolicy::TrustRegionNewton);
     assert!(
-        newton.result.records.iter().any(|r| r.filter == "None"),
+        p.result.records.iter().any(|r| r.filter == "None"),
         "raw Newton steps were used"
+    );
+    assert!(
+        p.result.records.iter().any(|r| r.filter == "Clamp"),
+        "and clamped ones far from the solution"
     );
 }
 
+/// The paper's algorithm as is (fixed clamp filter).
 #[test]
 fn sd_camelhead() {
     run("camelhead.off", FilterPolicy::Fixed);
