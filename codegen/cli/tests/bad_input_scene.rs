@@ -280,6 +280,20 @@ fn mesh_degenerate_rest_elements() {
                  1 1 0 0\nTetrahedra\n1\n1 2 3 4 0\nEnd\n";
     let e = mesh_fails("flat.mesh", medit.as_bytes(), "");
     says(&e, &["element 0 is degenerate: rest volume 0e0"]);
+    // a mesh scaled out of f64's range is not "below the tolerance"
+    let s = Scratch::new();
+    let e = sim_fails(
+        &s,
+        &format!("[mesh]\ngenerate = \"bar\"\nresolution = 1\nscale = 1e300\n{ARAP}"),
+        &[],
+    );
+    says(
+        &e,
+        &[
+            "`mesh`: the mesh is not usable: element 0 is degenerate",
+            "the coordinates are too large",
+        ],
+    );
 }
 
 #[test]

@@ -187,8 +187,8 @@ pub enum ValidationError {
     },
     /// The rest element has (nearly) zero area/volume.
     #[error(
-        "element {element} is degenerate: rest {} {measure:e} is below the tolerance {tolerance:e}",
-        if *dimension == 2 { "area" } else { "volume" }
+        "element {element} is degenerate: {}",
+        degenerate_detail(*measure, *tolerance, *dimension)
     )]
     DegenerateElement {
         /// Element id.
@@ -317,4 +317,19 @@ pub enum TutteError {
         /// The computed map, one uv per vertex.
         uv: Vec<[f64; 2]>,
     },
+}
+
+/// Why an element counts as degenerate, in words. A measure or tolerance
+/// that overflowed (coordinates around 1e100 and beyond) is not "below"
+/// anything: say that the coordinates are out of range instead.
+fn degenerate_detail(measure: f64, tolerance: f64, dimension: usize) -> String {
+    let what = if dimension == 2 { "area" } else { "volume" };
+    if !measure.is_finite() || !tolerance.is_finite() {
+        format!(
+            "its rest {what} ({measure:e}) or the size of the mesh overflows f64: \
+             the coordinates are too large (scale the mesh down)"
+        )
+    } else {
+        format!("rest {what} {measure:e} is below the tolerance {tolerance:e}")
+    }
 }
