@@ -32,22 +32,25 @@ impl Observer for Silent {}
 pub struct Progress {
     bar: ProgressBar,
     iterations: usize,
+    quiet: bool,
 }
 
 impl Progress {
     /// A bar (hidden when `quiet` or when stderr is not a terminal).
     pub fn new(quiet: bool) -> Self {
-        let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::stderr());
-        if quiet {
-            bar.set_draw_target(ProgressDrawTarget::hidden());
-        }
+        // hidden until the frame count is known (see `start`)
+        let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::hidden());
         let style = ProgressStyle::with_template(
             "{prefix:.bold} [{bar:30.cyan/blue}] frame {pos}/{len} {msg} ({elapsed})",
         )
         .unwrap_or_else(|_| ProgressStyle::default_bar())
         .progress_chars("=> ");
         bar.set_style(style);
-        Progress { bar, iterations: 0 }
+        Progress {
+            bar,
+            iterations: 0,
+            quiet,
+        }
     }
 }
 
@@ -56,6 +59,9 @@ impl Observer for Progress {
         self.bar.set_prefix(name.to_string());
         self.bar.set_length(frames as u64);
         self.bar.set_position(0);
+        if !self.quiet {
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
     }
 
     fn iteration(&mut self, _frame: usize, rec: &IterationRecord) {
