@@ -27,12 +27,13 @@
 //!
 //! Run: `cargo bench -p ecc-benches --bench newton`.
 
-use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
 
-use ecc_fem::param::{parameterize, ParamOptions};
-use ecc_fem::{Elastic, FilterPolicy, LinearSolver, NewtonParams, NewtonResult, NewtonSolver, Term, Tet, Tri};
+use ecc_fem::param::{ParamOptions, parameterize};
+use ecc_fem::{
+    Elastic, FilterPolicy, LinearSolver, NewtonParams, NewtonResult, NewtonSolver, Term, Tet, Tri,
+};
 use ecc_mesh::{box_tet_with_at_least, grid_tri_with_at_least, read_tri_mesh};
 use ecc_runtime::energies::{StableNeoHookean, SymmetricDirichlet};
 
@@ -44,11 +45,19 @@ fn env_list(name: &str, default: &[usize]) -> Vec<usize> {
 }
 
 fn env_usize(name: &str, default: usize) -> usize {
-    std::env::var(name).ok().and_then(|s| s.parse().ok()).unwrap_or(default)
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
 }
 
 fn bench_params(kind: LinearSolver, iters: usize) -> NewtonParams {
-    NewtonParams { tol_abs: 0.0, max_iters: iters, linear_solver: kind, ..Default::default() }
+    NewtonParams {
+        tol_abs: 0.0,
+        max_iters: iters,
+        linear_solver: kind,
+        ..Default::default()
+    }
 }
 
 struct Row {
@@ -64,7 +73,20 @@ struct Row {
 fn print_header() {
     println!(
         "{:<6} {:>9} {:>9} {:<8} {:>8} {:>9} {:>5} {:>10} {:>9} {:>9} {:>9} {:>9} {:>7} {:>11}",
-        "mesh", "elements", "unknowns", "solver", "setup_s", "L_MB", "its", "s/iter", "assembly", "factor", "solve", "lsearch", "cg/it", "status"
+        "mesh",
+        "elements",
+        "unknowns",
+        "solver",
+        "setup_s",
+        "L_MB",
+        "its",
+        "s/iter",
+        "assembly",
+        "factor",
+        "solve",
+        "lsearch",
+        "cg/it",
+        "status"
     );
 }
 
@@ -74,7 +96,10 @@ fn print_row(row: &Row) {
     let t = &r.times;
     let per = (t.assembly + t.factor + t.solve + t.line_search) / n;
     let cg = r.records.iter().map(|x| x.cg_iterations).sum::<usize>() as f64 / n;
-    let status = format!("{:?}", r.status).chars().take(11).collect::<String>();
+    let status = format!("{:?}", r.status)
+        .chars()
+        .take(11)
+        .collect::<String>();
     println!(
         "{:<6} {:>9} {:>9} {:<8} {:>8.3} {:>9.1} {:>5} {:>10.4} {:>9.4} {:>9.4} {:>9.4} {:>9.4} {:>7.0} {:>11}",
         row.mesh,
@@ -115,8 +140,11 @@ fn run_tri(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
     let mesh = grid_tri_with_at_least(target);
     let rest: Vec<[f64; 2]> = mesh.positions.iter().map(|p| [p[0], p[1]]).collect();
     let t0 = Instant::now();
-    let elastic = Elastic::<_, Tri>::planar(Arc::new(SymmetricDirichlet), &rest, &mesh.triangles).ok()?;
-    let fixed: Vec<usize> = (0..rest.len()).filter(|&v| rest[v][0] < 1e-12 || rest[v][0] > 1.0 - 1e-12).collect();
+    let elastic =
+        Elastic::<_, Tri>::planar(Arc::new(SymmetricDirichlet), &rest, &mesh.triangles).ok()?;
+    let fixed: Vec<usize> = (0..rest.len())
+        .filter(|&v| rest[v][0] < 1e-12 || rest[v][0] > 1.0 - 1e-12)
+        .collect();
     let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(elastic)];
     let mut solver = match NewtonSolver::new(rest.len(), terms, &fixed, bench_params(kind, iters)) {
         Ok(s) => s,
@@ -128,7 +156,10 @@ fn run_tri(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
     let setup = t0.elapsed().as_secs_f64();
     let mut x: Vec<[f64; 2]> = rest.iter().map(|p| [1.5 * p[0], p[1]]).collect();
     let r = solver.solve(&mut x).ok()?;
-    let factor_mb = solver.linear_system().factor_bytes().map_or(0.0, |b| b as f64 / 1e6);
+    let factor_mb = solver
+        .linear_system()
+        .factor_bytes()
+        .map_or(0.0, |b| b as f64 / 1e6);
     Some(Row {
         mesh: "tri".into(),
         elements: mesh.triangles.len(),
@@ -143,9 +174,16 @@ fn run_tri(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
 fn run_tet(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
     let mesh = box_tet_with_at_least(target);
     let t0 = Instant::now();
-    let elastic = Elastic::<_, Tet>::new(Arc::new(StableNeoHookean::new(1.0, 10.0)), &mesh.positions, &mesh.tets).ok()?;
+    let elastic = Elastic::<_, Tet>::new(
+        Arc::new(StableNeoHookean::new(1.0, 10.0)),
+        &mesh.positions,
+        &mesh.tets,
+    )
+    .ok()?;
     let p = &mesh.positions;
-    let fixed: Vec<usize> = (0..p.len()).filter(|&v| p[v][0] < 1e-12 || p[v][0] > 1.0 - 1e-12).collect();
+    let fixed: Vec<usize> = (0..p.len())
+        .filter(|&v| p[v][0] < 1e-12 || p[v][0] > 1.0 - 1e-12)
+        .collect();
     let terms: Vec<Box<dyn Term<3>>> = vec![Box::new(elastic)];
     let mut solver = match NewtonSolver::new(p.len(), terms, &fixed, bench_params(kind, iters)) {
         Ok(s) => s,
@@ -161,11 +199,18 @@ fn run_tet(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
         .map(|q| {
             let a = twist * q[0];
             let (y, z) = (q[1] - 0.5, q[2] - 0.5);
-            [q[0], 0.5 + a.cos() * y - a.sin() * z, 0.5 + a.sin() * y + a.cos() * z]
+            [
+                q[0],
+                0.5 + a.cos() * y - a.sin() * z,
+                0.5 + a.sin() * y + a.cos() * z,
+            ]
         })
         .collect();
     let r = solver.solve(&mut x).ok()?;
-    let factor_mb = solver.linear_system().factor_bytes().map_or(0.0, |b| b as f64 / 1e6);
+    let factor_mb = solver
+        .linear_system()
+        .factor_bytes()
+        .map_or(0.0, |b| b as f64 / 1e6);
     Some(Row {
         mesh: "tet".into(),
         elements: mesh.tets.len(),
@@ -178,7 +223,10 @@ fn run_tet(target: usize, kind: LinearSolver, iters: usize) -> Option<Row> {
 }
 
 fn scaling(iters: usize) {
-    let tris = env_list("ECC_BENCH_TRIS", &[10_000, 30_000, 100_000, 300_000, 1_000_000]);
+    let tris = env_list(
+        "ECC_BENCH_TRIS",
+        &[10_000, 30_000, 100_000, 300_000, 1_000_000],
+    );
     let tets = env_list("ECC_BENCH_TETS", &[10_000, 30_000, 100_000, 300_000]);
     let direct_max_tets = env_usize("ECC_BENCH_DIRECT_MAX_TETS", 110_000);
     println!("\n== scaling: time per Newton iteration (mean of {iters} steps), seconds ==");
@@ -203,13 +251,32 @@ fn scaling(iters: usize) {
 }
 
 fn param() {
-    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../shared/data");
-    println!("\n== SD parameterisation (unit area, mean energy, Tutte start, |grad|inf <= 1e-4, Cholesky) ==");
+    let data = ecc_mesh::data_dir();
+    println!(
+        "\n== SD parameterisation (unit area, mean energy, Tutte start, |grad|inf <= 1e-4, Cholesky) =="
+    );
     println!(
         "{:<22} {:>7} {:<18} {:>5} {:>9} {:>9} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:<10}",
-        "mesh", "tris", "policy", "its", "E_start", "E_final", "|g|inf", "wall_s", "assembly", "factor", "solve", "lsearch", "flipped", "status"
+        "mesh",
+        "tris",
+        "policy",
+        "its",
+        "E_start",
+        "E_final",
+        "|g|inf",
+        "wall_s",
+        "assembly",
+        "factor",
+        "solve",
+        "lsearch",
+        "flipped",
+        "status"
     );
-    for name in ["hand_1_i_f5000.obj", "camelhead.off", "armadillo_cut_low.obj"] {
+    for name in [
+        "hand_1_i_f5000.obj",
+        "camelhead.off",
+        "armadillo_cut_low.obj",
+    ] {
         let mesh = match read_tri_mesh(data.join(name)) {
             Ok(m) => m,
             Err(e) => {
@@ -217,7 +284,11 @@ fn param() {
                 continue;
             }
         };
-        for policy in [FilterPolicy::Fixed, FilterPolicy::TrustRegion, FilterPolicy::TrustRegionNewton] {
+        for policy in [
+            FilterPolicy::Fixed,
+            FilterPolicy::TrustRegion,
+            FilterPolicy::TrustRegionNewton,
+        ] {
             let mut opts = ParamOptions::default();
             opts.newton.filter_policy = policy;
             opts.newton.linear_solver = LinearSolver::Cholesky;

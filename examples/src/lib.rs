@@ -15,8 +15,8 @@
 //! | [`falling_bar`] | Stable Neo-Hookean bar dropped on a barrier ground | §6.5 | nothing below the ground, it falls then rests, total energy never grows |
 //!
 //! Energies come from the generated library (`ecc-energies`) through
-//! [`GeneratedEnergies`]. Meshes are read from `$ECC_DATA_DIR` (default
-//! `/work/shared/data`).
+//! [`GeneratedEnergies`]. Meshes are read from `$ECC_DATA_DIR` (default: the
+//! repository's `data/`).
 //!
 //! ```no_run
 //! use ecc_examples::{Size, falling_bar, Output};

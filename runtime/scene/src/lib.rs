@@ -54,7 +54,7 @@
 //! and key ("scene.toml:12:1: unknown key `gravty` in \[effects\]; did you
 //! mean `gravity`?"). Paths are relative to the scene file; `data:NAME`
 //! refers to the public mesh folder (`$ECC_DATA_DIR`, default
-//! `/work/shared/data`). See [`spec`] for every key and [`spec::validate`]
+//! the repository's `data/`). See [`spec`] for every key and [`spec::validate`]
 //! for the checks.
 //!
 //! ## Terms

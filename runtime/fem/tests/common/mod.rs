@@ -99,11 +99,9 @@ pub fn edges(tris: &[[usize; 3]]) -> Vec<usize> {
     e.into_iter().flat_map(|(a, b)| [a, b]).collect()
 }
 
-/// Path to a shared mesh.
+/// Path to a public mesh (the repository's `data/`, or `$ECC_DATA_DIR`).
 pub fn data(name: &str) -> std::path::PathBuf {
-    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/data")
-        .join(name)
+    ecc_mesh::data_file(name)
 }
 
 /// A structured m×m×m grid of the unit cube, 6 positively oriented tets per cell.

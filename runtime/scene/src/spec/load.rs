@@ -113,7 +113,7 @@ impl SceneFile {
     }
 
     /// Resolve a path written in the scene: `data:NAME` → the data folder
-    /// (`$ECC_DATA_DIR`, default `/work/shared/data`); relative paths →
+    /// (`$ECC_DATA_DIR`, default the repository's `data/`); relative paths →
     /// against the scene file's folder.
     pub fn resolve(&self, written: &str) -> PathBuf {
         if let Some(name) = written.strip_prefix("data:") {
@@ -128,11 +128,10 @@ impl SceneFile {
     }
 }
 
-/// The public mesh folder: `$ECC_DATA_DIR`, default `/work/shared/data`.
+/// The public mesh folder: `$ECC_DATA_DIR`, default the repository's `data/`
+/// (see [`ecc_mesh::data_dir`]).
 pub fn data_dir() -> PathBuf {
-    std::env::var_os("ECC_DATA_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("/work/shared/data"))
+    ecc_mesh::data_dir()
 }
 
 /// Levenshtein distance (for "did you mean").

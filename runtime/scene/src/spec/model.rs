@@ -39,7 +39,7 @@ pub struct Scene {
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
     /// Mesh file (`.obj .off .mesh .msh .vtk`), relative to the scene file;
-    /// `data:NAME` means `$ECC_DATA_DIR/NAME` (default `/work/shared/data`).
+    /// `data:NAME` means `$ECC_DATA_DIR/NAME` (default: the repository's `data/`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub file: Option<String>,
     /// A built-in shape instead of a file.
