@@ -4,11 +4,11 @@ use ecc_macros::energy;
 use ecc_runtime::{Energy, ScaleBlock};
 
 energy! { pub struct Snh; param mu = 1.0; param lambda = 10.0;
-          psi = mu/2*(IC - d) + lambda/2*(J - 1 - mu/lambda)^2; }
+psi = mu/2*(IC - d) + lambda/2*(J - 1 - mu/lambda)^2; }
 
 #[test]
 fn readme_snippet_works() {
-    let arap = energy!(I2 - 2*I1 + d);
+    let arap = energy!(I2 - 2 * I1 + d);
     let s = Energy::<3>::spectral(&arap, &[1.2, 0.9, 0.8]);
     // ARAP (Smith et al. 2019, eq. 30): Ψ_σi = 2σi − 2, A = 2I, twist about
     // axis k = 2 − 4/(σi + σj), flips 2.
@@ -19,7 +19,10 @@ fn readme_snippet_works() {
     assert!((s.twist[0] - (2.0 - 4.0 / 1.7)).abs() < 1e-14);
     assert_eq!(s.flip, [2.0; 3]);
 
-    let snh = Snh { mu: 2.0, ..Snh::default() };
+    let snh = Snh {
+        mu: 2.0,
+        ..Snh::default()
+    };
     assert_eq!((snh.mu, snh.lambda), (2.0, 10.0));
     // Rest is stress-free for this Stable Neo-Hookean variant (α = 1 + μ/λ):
     // Ψ_σi = μσi + λ(J − α)·J/σi = μ − μ = 0 at σ = 1.
