@@ -24,7 +24,7 @@ use ecc_runtime::Filter;
 
 use crate::graph_eval::{GraphEval, StretchRoots};
 use crate::linalg::{signed_svd, sym_eigen};
-use crate::real::Real;
+use ecc_tests::real::Real;
 
 /// An energy evaluated from its CAS graph in any precision.
 pub struct GenericEnergy {

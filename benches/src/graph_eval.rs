@@ -12,7 +12,7 @@ use ecc_dsl::{DimIr, Graph, Id, Node, Sym};
 use num_rational::BigRational;
 use num_traits::ToPrimitive;
 
-use crate::real::Real;
+use ecc_tests::real::Real;
 
 /// A compiled evaluation order for some roots of a graph.
 #[derive(Clone, Debug)]

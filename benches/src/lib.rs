@@ -9,7 +9,7 @@
 //! writes `BENCHMARKS.md` and PNG plots into `DIR` (default
 //! `docs/benchmarks/`). See [`report`] for what is measured and how.
 //!
-//! Modules: [`real`] / [`dd`] (number types), [`graph_eval`] (the CAS graph in
+//! Modules: [`real`] / [`dd`] (number types, from `ecc-tests`), [`graph_eval`] (the CAS graph in
 //! any precision), [`linalg`] (Jacobi eigen / signed SVD in any precision),
 //! [`generic_kernel`] (the f32/f64 element kernel), [`reference`] (the
 //! double-double reference), [`cases`] (hard F), [`energies`] (the energy set),
@@ -21,14 +21,14 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod cases;
-pub mod dd;
+/// Double-double and the real-number trait, shared with the tests' references.
+pub use ecc_tests::{dd, real};
 pub mod element;
 pub mod energies;
 pub mod generic_kernel;
 pub mod graph_eval;
 pub mod linalg;
 pub mod plot;
-pub mod real;
 pub mod reference;
 pub mod report;
 pub mod scaling;

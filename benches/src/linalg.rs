@@ -14,7 +14,7 @@
 //!   rather than u/10⁻¹². The last one is then replaced by det F/(σ₀σ₁) (3D)
 //!   or det F/σ₀ (2D), which is accurate to ≈ u relative whatever its size.
 
-use crate::real::Real;
+use ecc_tests::real::Real;
 
 /// A dense symmetric matrix in row-major order, n×n.
 pub type Dense<R> = Vec<R>;
@@ -195,7 +195,7 @@ pub fn signed_svd<R: Real>(f: &[R], d: usize) -> (Vec<R>, Dense<R>, Dense<R>) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dd::Dd;
+    use ecc_tests::dd::Dd;
 
     #[test]
     fn svd_reconstructs_and_keeps_small_sigma_accurate() {

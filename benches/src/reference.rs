@@ -27,10 +27,10 @@
 
 use ecc_runtime::Filter;
 
-use crate::dd::Dd;
 use crate::generic_kernel::{GenericEnergy, chain_rule, chain_weights, deformation, filter_value};
 use crate::linalg::{signed_svd, sym_eigen};
-use crate::real::Real;
+use ecc_tests::dd::Dd;
+use ecc_tests::real::Real;
 
 /// Reference element quantities (× rest measure), rounded to f64.
 #[derive(Clone, Debug)]

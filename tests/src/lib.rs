@@ -13,11 +13,16 @@
 //!   Hessian vs central differences, eigenpairs vs `SymmetricEigen`,
 //!   filtered Hessians finite/symmetric/PSD and equal to the numeric
 //!   projection);
-//! * [`library`]: the standard library's generated types with their sources.
+//! * [`library`]: the standard library's generated types with their sources;
+//! * [`dd`] and [`real`]: double-double arithmetic and a small real-number
+//!   trait over f32, f64 and it, the number types of the independent
+//!   high-precision references (here and in `ecc-benches`).
 
 pub mod cases;
+pub mod dd;
 pub mod fcheck;
 pub mod library;
+pub mod real;
 
 /// |a − b| ≤ tol · max(1, |a|, |b|), with equal non-finite values (same
 /// infinity, or both NaN) accepted.

@@ -1,5 +1,6 @@
 //! An independent high-precision reference for Ψ(F), its gradient and its
-//! Hessian: double-double arithmetic ([`dd`]), a double-double one-sided
+//! Hessian: double-double arithmetic ([`dd`], from the
+//! `ecc-tests` library), a double-double one-sided
 //! Jacobi SVD ([`svd`]), Ψ(σ) evaluated from the CAS graph of the `.psi`
 //! source in double-double ([`graph`]) and fourth-order central
 //! differences of Ψ(F) in double-double ([`fd`]). Shared by the `hard_*`
@@ -7,7 +8,7 @@
 #![allow(dead_code)]
 
 pub mod check;
-pub mod dd;
+pub use ecc_tests::dd;
 pub mod energies;
 pub mod fd;
 pub mod graph;

@@ -8,6 +8,10 @@
 //! accurate to a few u relative (enough for a reference that must be far
 //! more accurate than f64, not correctly rounded). Non-finite inputs give
 //! non-finite outputs (NaN for the log of a negative number, as in f64).
+//!
+//! This is the number type of the independent references: the `hard_*`
+//! tests (`tests/tests/hard_ref`) and the benchmark report's accuracy
+//! columns (`ecc-benches`, through [`crate::real::Real`]). It is never timed.
 
 use std::cmp::Ordering;
 use std::ops::{Add, Div, Mul, Neg, Sub};
@@ -163,6 +167,32 @@ impl Dd {
         if n < 0 { Dd::ONE / acc } else { acc }
     }
 
+    /// An integer, exactly for |n| < 2¹⁰⁶.
+    pub fn from_i128(n: i128) -> Dd {
+        let hi = n as f64;
+        let rest = n - hi as i128;
+        let (hi, lo) = quick_two_sum(hi, rest as f64);
+        Dd { hi, lo }
+    }
+
+    /// self · 2ᵏ (exact unless it over- or underflows).
+    pub fn ldexp(self, k: i32) -> Dd {
+        let (k1, k2) = (k / 2, k - k / 2);
+        self.scale(2f64.powi(k1)).scale(2f64.powi(k2))
+    }
+
+    /// selfʸ for self ≥ 0 as exp(y ln self) (NaN for self < 0, as `powf`
+    /// for a non-integer y; 0ʸ as in f64).
+    pub fn powf(self, y: Dd) -> Dd {
+        if self.hi < 0.0 {
+            return Dd::NAN;
+        }
+        if self.hi == 0.0 {
+            return Dd::from_f64(0f64.powf(y.hi));
+        }
+        (y * self.ln()).exp()
+    }
+
     /// A decimal integer given as text (`-123`), accurate to double-double.
     pub fn from_decimal_integer(text: &str) -> Option<Dd> {
         let (neg, digits) = match text.strip_prefix('-') {
@@ -292,5 +322,21 @@ mod tests {
                 Dd::ONE
             ) < 1e-30
         );
+    }
+
+    #[test]
+    fn integers_powers_and_ratios() {
+        // 1 + 2^-80 survives (f64 would drop it)
+        let tiny = Dd::from_f64(2f64.powi(-80));
+        assert_eq!(((Dd::ONE + tiny) - Dd::ONE).to_f64(), 2f64.powi(-80));
+        let n = (1i128 << 100) + 12345;
+        let d = Dd::from_i128(n);
+        assert_eq!(d.hi as i128 + d.lo as i128, n);
+        assert!(rel(Dd::from_f64(4.0).ln(), Dd::LN2.ldexp(1)) < 1e-30);
+        let third = Dd::ONE / Dd::from_f64(3.0);
+        assert!(rel(Dd::from_f64(8.0).powf(third), Dd::from_f64(2.0)) < 1e-30);
+        assert!(rel(Dd::from_f64(4.0).powf(Dd::from_f64(1.5)), Dd::from_f64(8.0)) < 1e-30);
+        assert!(Dd::from_f64(-2.0).powf(Dd::from_f64(0.5)).hi.is_nan());
+        assert_eq!(Dd::ONE.ldexp(-1074).hi, f64::from_bits(1));
     }
 }

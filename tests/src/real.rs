@@ -1,9 +1,11 @@
 //! A minimal real-number trait so the same code runs in `f32`, `f64` and
-//! double-double ([`crate::dd::Dd`]): the generic element kernel (f32 vs f64)
-//! and the high-precision reference share it.
+//! double-double ([`crate::dd::Dd`]): the benchmarks' generic element kernel
+//! (f32 vs f64, in `ecc-benches`) and their high-precision reference share it.
 
 use std::fmt::Debug;
 use std::ops::{Add, Div, Mul, Neg, Sub};
+
+use crate::dd::Dd;
 
 /// The operations the generic kernel and the reference need.
 pub trait Real:
@@ -103,3 +105,39 @@ macro_rules! impl_float {
 
 impl_float!(f32, 5.960_464_477_539_063e-8);
 impl_float!(f64, 1.110_223_024_625_156_5e-16);
+
+impl Real for Dd {
+    const EPS: f64 = 2.465_190_328_815_662e-32; // 2^-105
+    #[inline]
+    fn from_f64(x: f64) -> Self {
+        Dd::from_f64(x)
+    }
+    #[inline]
+    fn to_f64(self) -> f64 {
+        Dd::to_f64(self)
+    }
+    fn from_ratio(n: i128, d: i128) -> Self {
+        Dd::from_i128(n) / Dd::from_i128(d)
+    }
+    fn sqrt(self) -> Self {
+        Dd::sqrt(self)
+    }
+    fn ln(self) -> Self {
+        Dd::ln(self)
+    }
+    fn exp(self) -> Self {
+        Dd::exp(self)
+    }
+    fn powf(self, y: Self) -> Self {
+        Dd::powf(self, y)
+    }
+    fn abs(self) -> Self {
+        Dd::abs(self)
+    }
+    fn is_finite(self) -> bool {
+        Dd::is_finite(self)
+    }
+    fn powi(self, n: i32) -> Self {
+        Dd::powi(self, n as i64)
+    }
+}
