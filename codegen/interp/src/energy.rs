@@ -39,8 +39,6 @@ pub struct InterpEnergy<const D: usize> {
     info: EnergyInfo,
     decoupled: bool,
     sign_symmetric: bool,
-    /// Ψ1 = ∂Ψ/∂I1 is the constant 0 in the IR (Ψ does not use I1).
-    psi1_identically_zero: bool,
 }
 
 /// Ψ values that mean "outside the domain" — NaN (log of a negative
@@ -109,10 +107,6 @@ impl<const D: usize> InterpEnergy<D> {
                 roots.extend(ir.h_sigma.iter().flatten().copied());
             }
         }
-        let psi1_identically_zero = ir.d_inv.as_ref().is_some_and(|d| {
-            g.as_num(d.d1[0])
-                .is_some_and(|r| *r == num_rational::BigRational::from_integer(0.into()))
-        });
         // Trust `svd_free` only when Ψ really reads neither I1 nor σ.
         let svd_free = ir.svd_free && !g.uses_sigma(ir.psi) && !g.may_depend(ir.psi, Sym::I1);
         let psi_tape = Tape::compile(g, &[ir.psi])?;
@@ -134,7 +128,6 @@ impl<const D: usize> InterpEnergy<D> {
             },
             decoupled: ir.decoupled,
             sign_symmetric: ir.sign_symmetric,
-            psi1_identically_zero,
         })
     }
 
@@ -177,16 +170,7 @@ impl<const D: usize> Energy<D> for InterpEnergy<D> {
         }
         match self.path {
             Path::Invariant => {
-                let mut d1 = [out[1], out[2], out[3]];
-                // The runtime reads Ψ1 == 0.0 as "Ψ does not use I1" and then
-                // drops 2Ψ1/(σi+σj) before considering the near-antipodal
-                // limit. A Ψ1 that merely *rounds* to 0 (SD 3D on σi ≈ −σj,
-                // where Ψ1 vanishes but Ψ1/(σi+σj) does not) must not take
-                // that shortcut: pass the smallest normal number instead, which
-                // changes no other branch by more than 1e-308/(σi+σj).
-                if d1[0] == 0.0 && !self.psi1_identically_zero {
-                    d1[0] = f64::MIN_POSITIVE;
-                }
+                let d1 = [out[1], out[2], out[3]];
                 let d2 = std::array::from_fn(|k| out[4 + k]);
                 spectral_from_invariants(sigma, psi, d1, d2, self.decoupled, self.sign_symmetric)
             }
