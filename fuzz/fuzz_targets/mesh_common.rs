@@ -18,6 +18,7 @@ pub fn run(format: MeshFormat, data: &[u8]) {
         require_manifold: true,
         require_oriented: true,
         require_single_component: true,
+        drop_unreferenced: true,
         ..Default::default()
     };
     match mesh {

@@ -246,6 +246,23 @@ fn mesh_bad_indices() {
 }
 
 #[test]
+fn mesh_unreferenced_vertices() {
+    let e = mesh_fails(
+        "stray.obj",
+        b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 7 7 0\nf 1 2 3\n",
+        "",
+    );
+    says(
+        &e,
+        &[
+            "`mesh.file`",
+            "1 vertex is used by no element (id 3)",
+            "set `drop_unreferenced = true` in [mesh]",
+        ],
+    );
+}
+
+#[test]
 fn mesh_not_finite_or_not_a_mesh() {
     let e = mesh_fails("nan.obj", b"v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "");
     says(&e, &["nan.obj:2: vertex x is not finite: `nan`"]);

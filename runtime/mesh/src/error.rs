@@ -259,6 +259,30 @@ pub enum ValidationError {
         /// Number of components.
         count: usize,
     },
+    /// Vertices that no element uses (allowed with
+    /// `ValidationOptions::drop_unreferenced`, which drops them).
+    #[error("{}", unreferenced(*count, first))]
+    UnreferencedVertices {
+        /// How many.
+        count: usize,
+        /// The first few ids (at most 10).
+        first: Vec<usize>,
+    },
+}
+
+fn unreferenced(count: usize, first: &[usize]) -> String {
+    let ids: Vec<String> = first.iter().map(|v| v.to_string()).collect();
+    let more = if count > first.len() { ", …" } else { "" };
+    let ids = ids.join(", ");
+    if count == 1 {
+        format!(
+            "1 vertex is used by no element (id {ids}); remove it from the file or let it be dropped"
+        )
+    } else {
+        format!(
+            "{count} vertices are used by no element (ids {ids}{more}); remove them from the file or let them be dropped"
+        )
+    }
 }
 
 /// Why a Tutte embedding could not be computed.

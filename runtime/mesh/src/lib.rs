@@ -45,8 +45,9 @@
 //! # Validation
 //! [`validate_tri`] / [`validate_tet`] return the first problem as a
 //! [`ValidationError`] naming the element / vertex ids, or a
-//! [`Validated`] mesh with unreferenced vertices dropped
-//! ([`Validated::vertex_map`] old → new) and warnings. Degeneracy is
+//! [`Validated`] mesh and warnings. Vertices no element uses are an error
+//! unless [`ValidationOptions::drop_unreferenced`] asks to drop them
+//! ([`Validated::vertex_map`] old → new). Degeneracy is
 //! relative: `|measure| ≤ tol · L^d` with `L` the bounding-box diagonal
 //! (default `tol = 1e-12`; see [`validate`] for why this keeps camelhead's
 //! tiny folded faces and hand.mesh's slivers). Manifoldness, orientation

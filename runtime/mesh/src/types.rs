@@ -86,6 +86,12 @@ pub struct ValidationOptions {
     /// folded faces: `2.6e-8 · L²`; hand.mesh's worst sliver:
     /// `5.4e-11 · L³`). See [`crate::validate`].
     pub rest_measure_tolerance: f64,
+    /// Drop vertices that no element uses (with a warning, renumbering the
+    /// rest; [`Validated::vertex_map`] keeps old → new ids) instead of
+    /// rejecting the mesh with [`crate::ValidationError::UnreferencedVertices`].
+    /// Off by default: a stray vertex usually means a broken export, and a
+    /// silently renumbered mesh breaks vertex ids a user refers to.
+    pub drop_unreferenced: bool,
 }
 
 impl Default for ValidationOptions {
@@ -95,6 +101,7 @@ impl Default for ValidationOptions {
             require_oriented: false,
             require_single_component: false,
             rest_measure_tolerance: 1e-12,
+            drop_unreferenced: false,
         }
     }
 }
@@ -102,7 +109,9 @@ impl Default for ValidationOptions {
 /// A mesh that passed validation.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Validated<M> {
-    /// The mesh, with unreferenced vertices removed and indices renumbered.
+    /// The mesh, with unreferenced vertices removed and indices renumbered
+    /// (only with [`ValidationOptions::drop_unreferenced`]; otherwise they
+    /// are an error and the mesh is unchanged).
     pub mesh: M,
     /// `vertex_map[old] = Some(new)`, or `None` for a dropped
     /// (unreferenced) vertex. Its length is the input vertex count.

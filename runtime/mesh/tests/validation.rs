@@ -321,16 +321,47 @@ fn manifold_orientation_and_component_errors() {
     assert!(validate_tet(t, &ValidationOptions::default()).is_ok());
 }
 
-#[test]
-fn unreferenced_vertices_are_dropped_with_a_map() {
+fn square_with_strays() -> TriMesh {
     let mut m = square();
-    m.positions.insert(0, [f64::NAN, 9.0, 9.0]); // unreferenced, so harmless
+    m.positions.insert(0, [f64::NAN, 9.0, 9.0]); // unreferenced: not checked for finiteness
     m.positions.push([5.0, 5.0, 0.0]);
     m.uvs = Some((0..6).map(|i| [i as f64, 0.0]).collect());
     for t in &mut m.triangles {
         *t = t.map(|v| v + 1);
     }
-    let v = validate_tri(m, true, &ValidationOptions::default()).unwrap();
+    m
+}
+
+#[test]
+fn unreferenced_vertices_are_refused_by_default() {
+    let e = validate_tri(square_with_strays(), true, &ValidationOptions::default()).unwrap_err();
+    assert_eq!(
+        e,
+        E::UnreferencedVertices {
+            count: 2,
+            first: vec![0, 5]
+        }
+    );
+    assert_eq!(
+        e.to_string(),
+        "2 vertices are used by no element (ids 0, 5); remove them from the file or let them be dropped"
+    );
+    let mut t = unit_tet();
+    t.positions.push([0.0, 0.0, 9.0]);
+    let e = validate_tet(t, &ValidationOptions::default()).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "1 vertex is used by no element (id 4); remove it from the file or let it be dropped"
+    );
+}
+
+#[test]
+fn unreferenced_vertices_are_dropped_with_a_map_on_request() {
+    let opts = ValidationOptions {
+        drop_unreferenced: true,
+        ..Default::default()
+    };
+    let v = validate_tri(square_with_strays(), true, &opts).unwrap();
     assert_eq!(
         v.vertex_map,
         vec![None, Some(0), Some(1), Some(2), Some(3), None]

@@ -191,3 +191,47 @@ fn generated_meshes_too_large_are_refused_before_building() {
     let e = dry("[mesh]\ngenerate = \"disk\"\nrings = 1000000000\n[energy]\nname = \"arap\"\n");
     assert_eq!(e.key(), Some("mesh.rings"));
 }
+
+#[test]
+fn unreferenced_mesh_vertices_are_refused_unless_dropping_is_asked_for() {
+    let dir = tempfile::tempdir().unwrap();
+    // vertex 3 (1-based 4) is used by no triangle
+    std::fs::write(
+        dir.path().join("stray.obj"),
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 0\nv 1 1 0\nf 1 2 3\nf 2 5 3\n",
+    )
+    .unwrap();
+    let scene = |extra: &str| {
+        format!(
+            "[mesh]\nfile = \"stray.obj\"\n{extra}\n[energy]\nname = \"arap\"\n\n\
+             [[effects.handles]]\nids = [0, 4]\n"
+        )
+    };
+    let run = |text: &str| {
+        let f = SceneFile::parse(text, "scene.toml", dir.path()).unwrap();
+        let opts = RunOptions {
+            dry_run: true,
+            ..Default::default()
+        };
+        run_scene(&f, &RuntimeEnergies, &opts, &mut Silent)
+    };
+    let e = run(&scene("")).expect_err("a stray vertex is refused");
+    assert_eq!(e.key(), Some("mesh.file"));
+    let msg = e.to_string();
+    assert!(
+        msg.contains(
+            "the mesh is not usable: 1 vertex is used by no element (id 3); remove it from \
+             the file or let it be dropped (set `drop_unreferenced = true` in [mesh] to drop them)"
+        ),
+        "{msg}"
+    );
+    // Dropped on request; handle ids keep naming the file's vertices (4 exists only
+    // in the file's numbering: after dropping vertex 3 there are 4 vertices).
+    let report = run(&scene("drop_unreferenced = true")).expect("dropping makes it usable");
+    let ecc_scene::FinalState::Planar { x, triangles, .. } = report.state else {
+        panic!("a planar body")
+    };
+    assert_eq!(x.len(), 4);
+    assert_eq!(triangles, vec![[0, 1, 2], [1, 3, 2]]);
+    assert_eq!(report.handles, vec![vec![0, 3]]);
+}

@@ -128,6 +128,19 @@ pub(crate) fn check_measures(
     }
 }
 
+/// Refuse unreferenced vertices unless `drop` is set.
+pub(crate) fn check_unreferenced(used: &[bool], drop: bool) -> Result<(), ValidationError> {
+    if drop {
+        return Ok(());
+    }
+    let count = used.iter().filter(|u| !**u).count();
+    if count == 0 {
+        return Ok(());
+    }
+    let first = (0..used.len()).filter(|&v| !used[v]).take(10).collect();
+    Err(ValidationError::UnreferencedVertices { count, first })
+}
+
 /// Drop unreferenced vertices: the old → new map, the kept old ids, and
 /// a warning if anything was dropped.
 pub(crate) fn compaction(used: &[bool]) -> (Vec<Option<usize>>, Vec<usize>, Option<String>) {

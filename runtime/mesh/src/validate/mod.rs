@@ -17,8 +17,10 @@
 //! orientation, a single connected component. Several components are
 //! otherwise reported as a warning.
 //!
-//! Finally unreferenced vertices are dropped (with a warning) and indices
-//! renumbered; [`Validated::vertex_map`] keeps old → new ids.
+//! Finally vertices that no element uses are refused
+//! ([`ValidationError::UnreferencedVertices`]) or, with
+//! [`ValidationOptions::drop_unreferenced`], dropped (with a warning) and
+//! the indices renumbered; [`Validated::vertex_map`] keeps old → new ids.
 //!
 //! **Why `tol = 1e-12` by default.** Round-off in an area computed from
 //! coordinates of size `L` is about `1e-16 · L²`, so anything below
@@ -118,6 +120,7 @@ pub fn validate_tri(
     }
     let mut warnings = Vec::new();
     check_components(&mesh.triangles, opts, &mut warnings)?;
+    check_unreferenced(&used, opts.drop_unreferenced)?;
     let (vertex_map, kept, warning) = compaction(&used);
     warnings.extend(warning);
     let positions = kept.iter().map(|&v| mesh.positions[v]).collect();
@@ -161,6 +164,7 @@ pub fn validate_tet(
     }
     let mut warnings = Vec::new();
     check_components(&mesh.tets, opts, &mut warnings)?;
+    check_unreferenced(&used, opts.drop_unreferenced)?;
     let (vertex_map, kept, warning) = compaction(&used);
     warnings.extend(warning);
     let positions = kept.iter().map(|&v| mesh.positions[v]).collect();

@@ -259,9 +259,19 @@ pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError
     } else {
         "mesh"
     };
-    let opts = ValidationOptions::default();
+    // Cropping leaves vertices without elements on purpose.
+    let opts = ValidationOptions {
+        drop_unreferenced: spec.drop_unreferenced.unwrap_or(false) || spec.crop.is_some(),
+        ..Default::default()
+    };
     let invalid = |e: ecc_mesh::ValidationError| {
-        SceneError::invalid(key, format!("the mesh is not usable: {e}"))
+        let hint = match e {
+            ecc_mesh::ValidationError::UnreferencedVertices { .. } => {
+                " (set `drop_unreferenced = true` in [mesh] to drop them)"
+            }
+            _ => "",
+        };
+        SceneError::invalid(key, format!("the mesh is not usable: {e}{hint}"))
     };
     match mesh {
         AnyMesh::Tri(mut m) => {

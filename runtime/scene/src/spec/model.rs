@@ -74,6 +74,12 @@ pub struct MeshSpec {
     /// `scale` and `translate`): work on part of a large mesh.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub crop: Option<BoxSelect>,
+    /// Drop vertices that no element uses (renumbering the rest; handle
+    /// `ids` keep referring to the file's vertex ids) instead of refusing
+    /// the mesh. Default false. Vertices left without an element by `crop`
+    /// are always dropped.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drop_unreferenced: Option<bool>,
 }
 
 /// Built-in generated shapes (ecc-mesh generators).
