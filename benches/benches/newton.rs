@@ -9,6 +9,7 @@
 //!    * tets: unit cubes, stable Neo-Hookean (μ = 1, λ = 10), face x = 0
 //!      fixed, face x = 1 twisted by 30° about the x axis, started from the
 //!      linearly interpolated twist.
+//!
 //!    Each run takes `ECC_BENCH_ITERS` Newton steps (tolerance 0, so none stops
 //!    early) and reports the mean over steps.
 //! 2. **Parameterisation**: SD of hand_1_i_f5000.obj, camelhead.off and

@@ -27,11 +27,11 @@ pub fn run(format: MeshFormat, data: &[u8]) {
             let _ = boundary_loops(&m.triangles).map_err(|e| e.to_string());
             let _ = validate_tri(m.clone(), true, &ValidationOptions::default())
                 .map_err(|e| e.to_string());
-            if let Ok(v) = validate_tri(m, false, &strict) {
-                if v.mesh.positions.len() <= 300 {
-                    let _ = tutte_embedding_report(&v.mesh, TutteWeights::MeanValue)
-                        .map_err(|e| e.to_string());
-                }
+            if let Ok(v) = validate_tri(m, false, &strict)
+                && v.mesh.positions.len() <= 300
+            {
+                let _ = tutte_embedding_report(&v.mesh, TutteWeights::MeanValue)
+                    .map_err(|e| e.to_string());
             }
         }
         AnyMesh::Tet(m) => {
