@@ -300,7 +300,9 @@ pub enum TutteError {
         loops: usize,
     },
     /// A vertex is used by no triangle (validate the mesh first to drop it).
-    #[error("vertex {vertex} is not used by any triangle (run validate_tri first to drop it)")]
+    #[error(
+        "vertex {vertex} is not used by any triangle (validate_tri with drop_unreferenced drops it)"
+    )]
     UnreferencedVertex {
         /// Vertex id.
         vertex: usize,

@@ -179,7 +179,7 @@ fn bad_meshes_are_rejected_with_reasons() {
     assert_eq!(e, TutteError::UnreferencedVertex { vertex: 4 });
     assert_eq!(
         e.to_string(),
-        "vertex 4 is not used by any triangle (run validate_tri first to drop it)"
+        "vertex 4 is not used by any triangle (validate_tri with drop_unreferenced drops it)"
     );
     let mut m = square();
     m.positions[1][0] = f64::NAN;

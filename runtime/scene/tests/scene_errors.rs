@@ -221,7 +221,7 @@ fn unreferenced_mesh_vertices_are_refused_unless_dropping_is_asked_for() {
     assert!(
         msg.contains(
             "the mesh is not usable: 1 vertex is used by no element (id 3); remove it from \
-             the file or let it be dropped (set `drop_unreferenced = true` in [mesh] to drop them)"
+             the file or let it be dropped (set `drop_unreferenced = true` in [mesh] to drop unused vertices)"
         ),
         "{msg}"
     );

@@ -267,7 +267,7 @@ pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError
     let invalid = |e: ecc_mesh::ValidationError| {
         let hint = match e {
             ecc_mesh::ValidationError::UnreferencedVertices { .. } => {
-                " (set `drop_unreferenced = true` in [mesh] to drop them)"
+                " (set `drop_unreferenced = true` in [mesh] to drop unused vertices)"
             }
             _ => "",
         };
