@@ -17,6 +17,10 @@ pub fn emit(path: Option<&Path>, text: &str) -> Result<(), CliError> {
 }
 
 /// Print `text` (plus a final newline if missing) to standard output.
+///
+/// A closed pipe (`ecc … | head`) is not an error: the reader has what it
+/// wanted, so the rest is dropped silently and the command's exit status
+/// still reflects its own outcome (as in ripgrep; Rust ignores SIGPIPE).
 pub fn print_stdout(text: &str) -> Result<(), CliError> {
     let mut out = std::io::stdout().lock();
     let res = out.write_all(text.as_bytes()).and_then(|_| {
@@ -26,8 +30,10 @@ pub fn print_stdout(text: &str) -> Result<(), CliError> {
             out.write_all(b"\n")
         }
     });
-    res.and_then(|_| out.flush())
-        .map_err(|e| CliError::Stdout(e.to_string()))
+    match res.and_then(|_| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        r => r.map_err(|e| CliError::Stdout(e.to_string())),
+    }
 }
 
 /// Write `bytes` to `path` atomically: a temporary file in the same

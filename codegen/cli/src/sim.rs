@@ -20,6 +20,7 @@ use ecc_scene::{
 };
 
 use crate::error::CliError;
+use crate::output::print_stdout;
 
 /// `ecc sim` arguments.
 #[derive(Args, Debug, Clone, Default)]
@@ -135,16 +136,17 @@ pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
     let s = &report.summary;
     if args.json {
         let json = serde_json::to_string_pretty(s).map_err(|e| CliError::Stdout(e.to_string()))?;
-        println!("{json}");
+        print_stdout(&json)?;
     } else {
         let frames = s.frames.len().saturating_sub(1);
-        println!(
+        let mut text = format!(
             "{}: {} frame(s), {} Newton iterations, {}/{} frames converged, {:.2} s",
             s.scene, frames, s.newton_iterations, s.converged_frames, frames, s.wall_seconds
         );
         if let Some(dir) = &report.out_dir {
-            println!("wrote {} files to {}", s.outputs.len(), dir.display());
+            text += &format!("\nwrote {} files to {}", s.outputs.len(), dir.display());
         }
+        print_stdout(&text)?;
     }
     if args.stats {
         eprint!("{}", s.stats_table());

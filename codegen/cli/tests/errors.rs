@@ -142,3 +142,30 @@ fn bad_emit_requests() {
     let e = fails(&["frobnicate", "--emit", "rs"]);
     contains_all(&e, &["cannot read", "frobnicate"]);
 }
+
+/// `ecc … | head`: the reader closing the pipe is not an error — no message,
+/// no panic, and the exit status is the command's own (0 here).
+#[test]
+fn closed_stdout_pipe_is_not_an_error() {
+    use std::process::{Command, Stdio};
+    let snh = lib("snh");
+    let cases: [&[&str]; 2] = [
+        &["eval", &snh, "--dim", "3", "--F", F3, "--json"],
+        &[&snh, "--emit", "rs"],
+    ];
+    for args in cases {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ecc"))
+            .args(args)
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Close the read end before the energy is compiled and anything is written.
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
+        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+    }
+}
