@@ -17,14 +17,12 @@
 //! * every filtered Hessian: finite, exactly symmetric, PSD (down to the
 //!   filter's floor) and equal to the numeric projection of the raw Hessian.
 
-use ecc_runtime::reference::{
-    fd_gradient_f2, fd_gradient_f3, fd_hessian_f2, fd_hessian_f3, project_psd_numeric,
-};
+use ecc_runtime::reference::{fd_gradient_f, fd_hessian_f, project_psd_numeric};
 use ecc_runtime::{
-    Energy, Filter, eigen_f2, eigen_f3, gradient_f2, gradient_f3, hessian_f2, hessian_f3,
-    signed_svd2, signed_svd3,
+    Energy, Filter, Spectral, Svd, eigen_f2, eigen_f3, gradient_f2, gradient_f3, hessian_f2,
+    hessian_f3, signed_svd,
 };
-use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, SMatrix, SymmetricEigen};
+use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, SMatrix, SVector, SymmetricEigen};
 
 /// Gradient vs central differences (which reach ≈1e-10; a wrong factor gives O(1)).
 pub const GRAD_TOL: f64 = 1e-7;
@@ -123,6 +121,49 @@ fn psi_agrees(label: &str, a: f64, b: f64, what: &str) -> Result<(), String> {
     }
 }
 
+/// The runtime's F-space lift of a [`Spectral`] at one SVD, for one
+/// dimension (the runtime offers it per dimension: `gradient_f2`/`_f3`, …):
+/// a [`Point`] without the finite-difference parts.
+trait Lift<const D: usize> {
+    fn lift(&self, s: &Spectral<D>) -> Point;
+}
+
+fn dynv<const N: usize>(v: &SVector<f64, N>) -> DVector<f64> {
+    DVector::from_column_slice(v.as_slice())
+}
+
+macro_rules! lift {
+    ($d:literal, $gradient:ident, $hessian:ident, $eigen:ident) => {
+        impl Lift<$d> for Svd<$d> {
+            fn lift(&self, s: &Spectral<$d>) -> Point {
+                let h = $hessian(self, s, Filter::None);
+                let (vals, vecs) = $eigen(self, s);
+                Point {
+                    g: dynv(&$gradient(self, s)),
+                    g_fd: None,
+                    h: dynm(&h),
+                    h_fd: None,
+                    vals: vals.to_vec(),
+                    vecs: vecs.iter().map(dynv).collect(),
+                    filtered: FILTERS
+                        .iter()
+                        .map(|&fl| {
+                            (
+                                fl,
+                                dynm(&$hessian(self, s, fl)),
+                                dynm(&project_psd_numeric(&h, fl)),
+                            )
+                        })
+                        .collect(),
+                }
+            }
+        }
+    };
+}
+
+lift!(2, gradient_f2, hessian_f2, eigen_f2);
+lift!(3, gradient_f3, hessian_f3, eigen_f3);
+
 /// Check a 3D energy at F (`fd`: also compare with central differences).
 /// `Ok(false)` when F is outside the energy's domain (Ψ = +∞).
 pub fn check3(
@@ -132,48 +173,7 @@ pub fn check3(
     label: &str,
     worst: &mut Worst,
 ) -> Result<bool, String> {
-    let svd = signed_svd3(f);
-    let s = e.spectral(&svd.sigma);
-    psi_agrees(label, e.psi(&svd.sigma), s.psi, "psi(σ)")?;
-    if e.info().svd_free_psi {
-        let p = e.psi_i2_i3(f.norm_squared(), f.determinant());
-        let p = p.ok_or_else(|| format!("{label}: svd_free_psi without psi_i2_i3"))?;
-        if !crate::close(p, s.psi, i2_i3_tol(f.norm(), f.determinant(), 3)) {
-            return Err(format!(
-                "{label}: psi_i2_i3 {p:e} vs spectral Ψ {:e}",
-                s.psi
-            ));
-        }
-    }
-    if !s.psi.is_finite() {
-        return Ok(false);
-    }
-    let h = hessian_f3(&svd, &s, Filter::None);
-    let (vals, vecs) = eigen_f3(&svd, &s);
-    let p = Point {
-        g: DVector::from_column_slice(gradient_f3(&svd, &s).as_slice()),
-        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f3(e, f).as_slice())),
-        h: dynm(&h),
-        h_fd: fd.then(|| dynm(&fd_hessian_f3(e, f))),
-        vals: vals.to_vec(),
-        vecs: vecs
-            .iter()
-            .map(|v| DVector::from_column_slice(v.as_slice()))
-            .collect(),
-        filtered: FILTERS
-            .iter()
-            .map(|&fl| {
-                (
-                    fl,
-                    dynm(&hessian_f3(&svd, &s, fl)),
-                    dynm(&project_psd_numeric(&h, fl)),
-                )
-            })
-            .collect(),
-    };
-    let smin = svd.sigma.iter().fold(f64::INFINITY, |m, x| m.min(x.abs()));
-    check(&p, label, worst, &|| fixed_step_hessians(e, f, smin))?;
-    Ok(true)
+    check_at(e, f, f.determinant(), fd, label, worst)
 }
 
 /// Check a 2D energy at F (see [`check3`]).
@@ -184,13 +184,28 @@ pub fn check2(
     label: &str,
     worst: &mut Worst,
 ) -> Result<bool, String> {
-    let svd = signed_svd2(f);
+    check_at(e, f, f.determinant(), fd, label, worst)
+}
+
+/// [`check3`]/[`check2`] for `D`; `det` = det F.
+fn check_at<const D: usize>(
+    e: &dyn Energy<D>,
+    f: &SMatrix<f64, D, D>,
+    det: f64,
+    fd: bool,
+    label: &str,
+    worst: &mut Worst,
+) -> Result<bool, String>
+where
+    Svd<D>: Lift<D>,
+{
+    let svd = signed_svd(f);
     let s = e.spectral(&svd.sigma);
     psi_agrees(label, e.psi(&svd.sigma), s.psi, "psi(σ)")?;
     if e.info().svd_free_psi {
-        let p = e.psi_i2_i3(f.norm_squared(), f.determinant());
+        let p = e.psi_i2_i3(f.norm_squared(), det);
         let p = p.ok_or_else(|| format!("{label}: svd_free_psi without psi_i2_i3"))?;
-        if !crate::close(p, s.psi, i2_i3_tol(f.norm(), f.determinant(), 2)) {
+        if !crate::close(p, s.psi, i2_i3_tol(f.norm(), det, D as i32)) {
             return Err(format!(
                 "{label}: psi_i2_i3 {p:e} vs spectral Ψ {:e}",
                 s.psi
@@ -200,28 +215,10 @@ pub fn check2(
     if !s.psi.is_finite() {
         return Ok(false);
     }
-    let h = hessian_f2(&svd, &s, Filter::None);
-    let (vals, vecs) = eigen_f2(&svd, &s);
     let p = Point {
-        g: DVector::from_column_slice(gradient_f2(&svd, &s).as_slice()),
-        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f2(e, f).as_slice())),
-        h: dynm(&h),
-        h_fd: fd.then(|| dynm(&fd_hessian_f2(e, f))),
-        vals: vals.to_vec(),
-        vecs: vecs
-            .iter()
-            .map(|v| DVector::from_column_slice(v.as_slice()))
-            .collect(),
-        filtered: FILTERS
-            .iter()
-            .map(|&fl| {
-                (
-                    fl,
-                    dynm(&hessian_f2(&svd, &s, fl)),
-                    dynm(&project_psd_numeric(&h, fl)),
-                )
-            })
-            .collect(),
+        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f(e, f).as_slice())),
+        h_fd: fd.then(|| fd_hessian_f(e, f)),
+        ..svd.lift(&s)
     };
     let smin = svd.sigma.iter().fold(f64::INFINITY, |m, x| m.min(x.abs()));
     check(&p, label, worst, &|| fixed_step_hessians(e, f, smin))?;
