@@ -18,6 +18,8 @@
 //!   trait over f32, f64 and it, the number types of the independent
 //!   high-precision references (here and in `ecc-benches`).
 
+// One source with the runtime's own tests (see the module docs).
+#[path = "../../runtime/core/tests/common/cases.rs"]
 pub mod cases;
 pub mod dd;
 pub mod fcheck;

@@ -1,4 +1,9 @@
 //! Hard cases, rotations and random deformation gradients (seeded).
+//!
+//! One file for two crates: the runtime's own tests (`mod common`) and the
+//! cross-crate tests' library (`ecc_tests::cases`, included by path), so
+//! both check the same hard cases without the runtime depending on the
+//! compiler crates.
 
 use nalgebra::{Matrix2, Matrix3, SMatrix, UnitQuaternion};
 use rand::{Rng, SeedableRng};
@@ -19,53 +24,72 @@ pub struct Case<const D: usize> {
     /// Some pair has σi + σj ≈ 0: a genuine pole for energies that are not
     /// sign-symmetric (central differences are meaningless across it).
     pub antipodal: bool,
+    /// Every σ > 0 (inside log-type energies' domain).
+    pub positive: bool,
 }
 
-const fn c<const D: usize>(name: &'static str, sigma: [f64; D], antipodal: bool) -> Case<D> {
+const fn c<const D: usize>(
+    name: &'static str,
+    sigma: [f64; D],
+    antipodal: bool,
+    positive: bool,
+) -> Case<D> {
     Case {
         name,
         sigma,
         antipodal,
+        positive,
     }
 }
 
 /// The hard cases in 3D.
 pub fn hard_cases_3d() -> Vec<Case<3>> {
     vec![
-        c("rest", [1.0, 1.0, 1.0], false),
-        c("uniform scale up", [1.7, 1.7, 1.7], false),
-        c("uniform scale down", [0.45, 0.45, 0.45], false),
-        c("repeated pair", [1.6, 0.7, 0.7], false),
-        c("repeated top pair", [1.3, 1.3, 0.6], false),
-        c("near-repeated 1e-9", [1.4, 1.4 * (1.0 - 1e-9), 0.8], false),
+        c("rest", [1.0, 1.0, 1.0], false, true),
+        c("uniform scale up", [1.7, 1.7, 1.7], false, true),
+        c("uniform scale down", [0.45, 0.45, 0.45], false, true),
+        c("repeated pair", [1.6, 0.7, 0.7], false, true),
+        c("repeated top pair", [1.3, 1.3, 0.6], false, true),
+        c(
+            "near-repeated 1e-9",
+            [1.4, 1.4 * (1.0 - 1e-9), 0.8],
+            false,
+            true,
+        ),
         c(
             "near-repeated 1e-9 low",
             [1.4, 0.8, 0.8 * (1.0 - 1e-9)],
             false,
+            true,
         ),
-        c("antipodal 1e-9", [1.2, 0.9, -0.9 * (1.0 - 1e-9)], true),
-        c("antipodal exact", [1.2, 0.9, -0.9], true),
-        c("sigma 1e-6", [1.1, 0.8, 1e-6], false),
-        c("inverted", [1.3, 0.9, -0.6], false),
-        c("inverted all equal", [0.8, 0.8, -0.8], true),
-        c("large stretch", [1e3, 1.2, 0.9], false),
-        c("generic", [1.9, 1.1, 0.35], false),
+        c(
+            "antipodal 1e-9",
+            [1.2, 0.9, -0.9 * (1.0 - 1e-9)],
+            true,
+            false,
+        ),
+        c("antipodal exact", [1.2, 0.9, -0.9], true, false),
+        c("sigma 1e-6", [1.1, 0.8, 1e-6], false, true),
+        c("inverted", [1.3, 0.9, -0.6], false, false),
+        c("inverted all equal", [0.8, 0.8, -0.8], true, false),
+        c("large stretch", [1e3, 1.2, 0.9], false, true),
+        c("generic", [1.9, 1.1, 0.35], false, true),
     ]
 }
 
 /// The hard cases in 2D.
 pub fn hard_cases_2d() -> Vec<Case<2>> {
     vec![
-        c("rest", [1.0, 1.0], false),
-        c("uniform scale up", [1.7, 1.7], false),
-        c("uniform scale down", [0.45, 0.45], false),
-        c("near-repeated 1e-9", [1.4, 1.4 * (1.0 - 1e-9)], false),
-        c("antipodal 1e-9", [0.9, -0.9 * (1.0 - 1e-9)], true),
-        c("antipodal exact", [0.9, -0.9], true),
-        c("sigma 1e-6", [1.1, 1e-6], false),
-        c("inverted", [1.3, -0.6], false),
-        c("large stretch", [1e3, 0.9], false),
-        c("generic", [1.9, 0.35], false),
+        c("rest", [1.0, 1.0], false, true),
+        c("uniform scale up", [1.7, 1.7], false, true),
+        c("uniform scale down", [0.45, 0.45], false, true),
+        c("near-repeated 1e-9", [1.4, 1.4 * (1.0 - 1e-9)], false, true),
+        c("antipodal 1e-9", [0.9, -0.9 * (1.0 - 1e-9)], true, false),
+        c("antipodal exact", [0.9, -0.9], true, false),
+        c("sigma 1e-6", [1.1, 1e-6], false, true),
+        c("inverted", [1.3, -0.6], false, false),
+        c("large stretch", [1e3, 0.9], false, true),
+        c("generic", [1.9, 0.35], false, true),
     ]
 }
 
