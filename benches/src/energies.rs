@@ -19,7 +19,7 @@ use crate::generic_kernel::GenericEnergy;
 pub struct BenchEnergy<const D: usize> {
     /// Short name used in tables.
     pub name: &'static str,
-    /// `.psi` file name (in `dsl/energies/`).
+    /// `.psi` file name (in `energies/psi/`).
     pub file: &'static str,
     /// Generated code (ecc-energies).
     pub generated: Arc<dyn Energy<D>>,
@@ -45,14 +45,14 @@ impl std::fmt::Display for EnergySetError {
 
 impl std::error::Error for EnergySetError {}
 
-const ARAP: &str = include_str!("../../dsl/energies/arap.psi");
-const SD2: &str = include_str!("../../dsl/energies/sd2.psi");
-const SD3: &str = include_str!("../../dsl/energies/sd3.psi");
-const SNH: &str = include_str!("../../dsl/energies/snh.psi");
-const STVK: &str = include_str!("../../dsl/energies/stvk.psi");
-const MIPS2: &str = include_str!("../../dsl/energies/mips2.psi");
-const OGDEN: &str = include_str!("../../dsl/energies/ogden.psi");
-const OGDEN2: &str = include_str!("../../dsl/energies/ogden2.psi");
+const ARAP: &str = include_str!("../../energies/psi/arap.psi");
+const SD2: &str = include_str!("../../energies/psi/sd2.psi");
+const SD3: &str = include_str!("../../energies/psi/sd3.psi");
+const SNH: &str = include_str!("../../energies/psi/snh.psi");
+const STVK: &str = include_str!("../../energies/psi/stvk.psi");
+const MIPS2: &str = include_str!("../../energies/psi/mips2.psi");
+const OGDEN: &str = include_str!("../../energies/psi/ogden.psi");
+const OGDEN2: &str = include_str!("../../energies/psi/ogden2.psi");
 
 fn build<const D: usize>(
     name: &'static str,

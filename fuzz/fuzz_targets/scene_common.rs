@@ -1,5 +1,5 @@
 //! What the scene fuzz target does with its input (shared with the corpus
-//! replay test `runtime/scene/tests/bad_input_fuzz_corpus.rs`): TOML
+//! replay test `app/scene/tests/bad_input_fuzz_corpus.rs`): TOML
 //! parsing, key checking with did-you-mean and the location of every error
 //! (`ecc_scene::SceneFile::parse`). Rendering the error must not panic
 //! either (it slices the text at the reported span).

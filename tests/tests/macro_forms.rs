@@ -6,7 +6,7 @@ use ecc_runtime::{Energy, ParamError, ScaleBlock};
 
 mod inner {
     ecc_macros::energy! {
-        /// Stable Neo-Hookean, as in `dsl/energies/snh.psi`.
+        /// Stable Neo-Hookean, as in `energies/psi/snh.psi`.
         pub struct MacroSnh;
         param mu = 1.0;
         param lambda = 10.0;
