@@ -203,3 +203,25 @@ fn nothing_panics_on_garbage() {
     let negs = format!("psi = {}I1", "-".repeat(100001));
     assert!(compile(&negs, "negs").is_ok());
 }
+
+#[test]
+fn only_open_power_chains_count_towards_the_nesting_limit() {
+    // 150 powers in one flat sum (or product, or argument list) are not nested.
+    for op in [" + ", " - ", "*", "/"] {
+        let src = format!("psi = {}", vec!["I1^2"; 150].join(op));
+        assert!(compile(&src, "flat").is_ok(), "{op}");
+    }
+    let args = format!("psi = {}", vec!["log(I3^2)"; 150].join(" + "));
+    assert!(compile(&args, "args").is_ok());
+    // A chain of 101 carets is still refused, also through parentheses,
+    // unary signs and exponent literals (`1e-3` does not end a chain).
+    let is_deep = |src: &str| {
+        compile(src, "deep")
+            .err()
+            .is_some_and(|d| d.render("deep", src).contains("nested too deeply"))
+    };
+    assert!(is_deep(&format!("psi = I1{}", "^1".repeat(101))));
+    assert!(is_deep(&format!("psi = I1{}", "^(1)".repeat(101))));
+    assert!(is_deep(&format!("psi = I1{}", "^-1e-3".repeat(101))));
+    assert!(!is_deep(&format!("psi = I1{}", "^1".repeat(100))));
+}

@@ -54,18 +54,40 @@ fn parse_statement(source: &str, span: Span) -> Result<Stmt, Error> {
 
 /// Parenthesis balance and nesting depth, checked before the grammar so the
 /// messages can point at the culprit parenthesis.
+///
+/// A `^` chain (`a^b^c`, right-associative) nests the parser; `+`, `-`, `*`,
+/// `/` and `,` end it, so only the carets of the chains still open at each
+/// parenthesis level count (a long sum of powers is flat).
 fn check_nesting(text: &str, span: Span) -> Result<(), Error> {
     let mut open: Vec<usize> = Vec::new();
+    let mut chains: Vec<usize> = vec![0];
     let mut carets = 0usize;
     let mut in_comment = false;
+    let (mut prev, mut prev2, mut last) = (' ', ' ', ' ');
     for (i, c) in text.char_indices() {
         if in_comment {
             in_comment = c != '\n';
             continue;
         }
+        let ends_chain = match c {
+            '*' | '/' | ',' => true,
+            // Binary `+`/`-` (after an operand), not the sign of `1e-3`.
+            '+' | '-' => {
+                let exponent =
+                    matches!(prev, 'e' | 'E') && (prev2.is_ascii_digit() || prev2 == '.');
+                (last.is_alphanumeric() || matches!(last, '_' | '.' | ')')) && !exponent
+            }
+            _ => false,
+        };
+        if ends_chain && let Some(n) = chains.last_mut() {
+            carets -= std::mem::take(n);
+        }
         match c {
             '#' => in_comment = true,
-            '(' => open.push(i),
+            '(' => {
+                open.push(i);
+                chains.push(0);
+            }
             ')' if open.pop().is_none() => {
                 let at = span.start + i;
                 return Err(Error::Syntax {
@@ -73,8 +95,18 @@ fn check_nesting(text: &str, span: Span) -> Result<(), Error> {
                     message: "unmatched `)`".into(),
                 });
             }
-            '^' => carets += 1,
+            ')' => carets -= chains.pop().unwrap_or(0),
+            '^' => {
+                carets += 1;
+                if let Some(n) = chains.last_mut() {
+                    *n += 1;
+                }
+            }
             _ => {}
+        }
+        (prev2, prev) = (prev, c);
+        if !c.is_whitespace() {
+            last = c;
         }
         if open.len() > MAX_NESTING || carets > MAX_NESTING {
             let at = span.start + i;
