@@ -21,7 +21,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::FemError;
 use crate::pattern::Pattern;
-use cholesky::CholeskyFactor;
+use cholesky::{CholeskyFactor, FactorizeError};
 use pcg::{Pcg, PcgInfo};
 
 /// Which linear solver the Newton iteration uses.
@@ -99,6 +99,8 @@ pub struct LinearSystem {
     backend: Backend,
     /// (bytes, flops) of the Cholesky factor, if a symbolic analysis was done.
     analysis: Option<(usize, f64)>,
+    /// Symbolic analyses whose factor was not kept (`Auto` chose PCG).
+    discarded_analyses: usize,
 }
 
 impl LinearSystem {
@@ -110,6 +112,7 @@ impl LinearSystem {
         limits: AutoLimits,
     ) -> Result<Self, FemError> {
         let pcg = || Backend::Pcg(Box::new(Pcg::new(pattern)));
+        let mut discarded_analyses = 0;
         let (backend, analysis) = match choice {
             LinearSolver::Pcg => (pcg(), None),
             LinearSolver::Cholesky => {
@@ -124,6 +127,7 @@ impl LinearSystem {
                         (Backend::Cholesky(Box::new(f)), Some(a))
                     } else {
                         drop(f);
+                        discarded_analyses = 1;
                         (pcg(), Some(a))
                     }
                 }
@@ -131,7 +135,11 @@ impl LinearSystem {
                 Err(_) => (pcg(), None),
             },
         };
-        Ok(LinearSystem { backend, analysis })
+        Ok(LinearSystem {
+            backend,
+            analysis,
+            discarded_analyses,
+        })
     }
 
     /// The backend in use (`Cholesky` or `Pcg`, never `Auto`).
@@ -150,6 +158,12 @@ impl LinearSystem {
     /// Estimated flops of one Cholesky factorisation, if a symbolic analysis was done.
     pub fn factor_flops(&self) -> Option<f64> {
         self.analysis.map(|a| a.1)
+    }
+
+    /// Symbolic analyses run by this system: the kept factor's (1, plus one
+    /// per pattern change) and one `Auto` may have discarded for PCG.
+    pub fn symbolic_analyses(&self) -> usize {
+        self.discarded_analyses + self.cholesky().map_or(0, CholeskyFactor::symbolic_analyses)
     }
 
     /// The Cholesky factor (for its counters), if that is the backend.
@@ -204,12 +218,17 @@ impl LinearSystem {
             Backend::Cholesky(f) => {
                 for attempt in 1..=max_attempts.max(1) {
                     apply(values, shift, &mut applied);
-                    if f.factorize(pattern, values).is_ok() {
-                        return Ok(PrepareInfo {
-                            shift,
-                            relative_shift: shift / mean_diag,
-                            factorizations: attempt,
-                        });
+                    match f.factorize(pattern, values) {
+                        Ok(()) => {
+                            return Ok(PrepareInfo {
+                                shift,
+                                relative_shift: shift / mean_diag,
+                                factorizations: attempt,
+                            });
+                        }
+                        // a new pattern that cannot be analysed: no shift helps
+                        Err(FactorizeError::Symbolic(_)) => break,
+                        Err(FactorizeError::NotPositiveDefinite(_)) => {}
                     }
                     shift = (100.0 * shift).max(1e-10 * mean_diag);
                 }
