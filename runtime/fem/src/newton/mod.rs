@@ -28,6 +28,7 @@
 //! diagonal shift, see [`crate::linear`]) when trusted, which restores
 //! Newton's quadratic convergence in the final phase.
 
+mod iteration;
 pub mod line_search;
 pub mod params;
 pub mod record;

@@ -135,7 +135,9 @@ pub struct NewtonResult {
     /// Linear solver actually used.
     pub linear_solver: LinearSolver,
     /// Symbolic analyses and numeric factorisations done by this solver object
-    /// so far (symbolic stays 1: it is done once per pattern).
+    /// so far, over every linear backend it has had (symbolic stays 1 while
+    /// the backend is kept: it is done once per pattern; `Auto` counts the
+    /// analysis it runs to decide, even when it then chooses PCG).
     pub symbolic_analyses: usize,
     pub numeric_factorizations: usize,
     pub times: TimeSplit,

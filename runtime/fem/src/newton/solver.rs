@@ -4,16 +4,14 @@ use std::ops::ControlFlow;
 use std::time::Instant;
 
 use ecc_runtime::filter::Filter;
-use rayon::prelude::*;
 
-use super::line_search::{Armijo, backtrack};
-use super::params::{FilterPolicy, NewtonParams};
-use super::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
+use super::iteration::SolveState;
+use super::params::NewtonParams;
+use super::record::{IterationRecord, NewtonResult, NewtonStatus};
 use crate::assembly::{Assembler, NonFiniteStencil};
 use crate::dofs::DofMap;
 use crate::error::FemError;
 use crate::linear::{LinearSolver, LinearSystem};
-use crate::parallel::{dot, norm_inf};
 use crate::pattern::Pattern;
 use crate::term::Term;
 
@@ -35,19 +33,27 @@ pub struct Evaluation {
 /// colourings and the symbolic factorisation. `solve` can then be called
 /// any number of times (moved handles, changed term data, new start).
 pub struct NewtonSolver<const D: usize> {
-    terms: Vec<Box<dyn Term<D>>>,
-    assembler: Assembler<D>,
-    linear: LinearSystem,
+    pub(super) terms: Vec<Box<dyn Term<D>>>,
+    pub(super) assembler: Assembler<D>,
+    pub(super) linear: LinearSystem,
+    /// (symbolic analyses, numeric factorisations) of the linear backends
+    /// replaced by [`NewtonSolver::set_linear_solver`].
+    earlier: (usize, usize),
     /// Parameters (may be changed between solves; `linear_solver` and
     /// `auto_limits` only take effect through [`NewtonSolver::set_linear_solver`]).
     pub params: NewtonParams,
-    g: Vec<f64>,
-    values: Vec<f64>,
-    rhs: Vec<f64>,
-    d: Vec<f64>,
-    dx: Vec<[f64; D]>,
-    xt: Vec<[f64; D]>,
-    partials: Vec<f64>,
+    /// ∇E over the unknowns.
+    pub(super) g: Vec<f64>,
+    /// Upper-CSC values of the (shifted) Hessian.
+    pub(super) values: Vec<f64>,
+    pub(super) rhs: Vec<f64>,
+    /// Newton direction over the unknowns.
+    pub(super) d: Vec<f64>,
+    /// d per vertex (zero on fixed DOFs).
+    pub(super) dx: Vec<[f64; D]>,
+    /// Trial positions x + αd.
+    pub(super) xt: Vec<[f64; D]>,
+    pub(super) partials: Vec<f64>,
 }
 
 impl<const D: usize> NewtonSolver<D> {
@@ -77,6 +83,7 @@ impl<const D: usize> NewtonSolver<D> {
         Ok(NewtonSolver {
             terms,
             linear,
+            earlier: (0, 0),
             params,
             g: vec![0.0; n],
             values: vec![0.0; nnz],
@@ -92,7 +99,10 @@ impl<const D: usize> NewtonSolver<D> {
     /// Rebuild the linear backend (e.g. switch Cholesky ↔ PCG).
     pub fn set_linear_solver(&mut self, choice: LinearSolver) -> Result<(), FemError> {
         self.params.linear_solver = choice;
-        self.linear = LinearSystem::new(self.assembler.pattern(), choice, self.params.auto_limits)?;
+        let new = LinearSystem::new(self.assembler.pattern(), choice, self.params.auto_limits)?;
+        let old = std::mem::replace(&mut self.linear, new);
+        self.earlier.0 += old.symbolic_analyses();
+        self.earlier.1 += old.cholesky().map_or(0, |c| c.numeric_factorizations());
         Ok(())
     }
 
@@ -197,226 +207,38 @@ impl<const D: usize> NewtonSolver<D> {
         self.check_positions(x)?;
         let t_start = Instant::now();
         self.assembler.reset_timings();
-        let p = self.params.clone();
-        let scale = p.energy_scale;
-        let null_shift = if self.dofs().n_fixed() == 0 {
-            p.null_space_shift
-        } else {
-            0.0
-        };
-        let armijo = Armijo {
-            c1: p.armijo_c1,
-            beta: p.backtrack,
-            min_step: p.min_step,
-        };
-        let mut times = TimeSplit::default();
-        let mut records = Vec::new();
-        let mut filter = p.filter_policy.first(p.filter);
-        // last relative shift that made a raw (unfiltered) Hessian factorable
-        let mut raw_shift = 0.0f64;
-        let mut initial: Option<(f64, f64)> = None;
-        // (energy, ‖∇E‖∞) of the current positions, set by every exit path
-        let mut last: (f64, f64);
-        let mut iter = 0;
-
+        let mut state = SolveState::new(self.params.clone(), self.dofs().n_fixed());
         let status = loop {
-            // 1. assemble E, ∇E and the filtered Hessian
-            let t0 = Instant::now();
-            let mut used_filter = filter;
-            let mut assembled = self.assembler.assemble(
-                &self.terms,
-                x,
-                scale,
-                &mut self.g,
-                Some((filter, &mut self.values)),
-            );
-            if filter == Filter::None && matches!(&assembled, Err(b) if b.quantity == "hessian") {
-                // the raw Hessian is genuinely singular somewhere: filter this iteration
-                used_filter = p.filter;
-                assembled = self.assembler.assemble(
-                    &self.terms,
-                    x,
-                    scale,
-                    &mut self.g,
-                    Some((p.filter, &mut self.values)),
-                );
-            }
-            let t_assembly = t0.elapsed().as_secs_f64();
-            times.assembly += t_assembly;
-            let energy = match assembled {
-                Ok(e) => e,
-                Err(bad) => {
-                    // report the energy of x (+∞ if a stencil is outside its domain
-                    // or NaN) and an unknown (+∞) gradient norm, never NaN
-                    last = (self.assembler.energy(&self.terms, x, scale), f64::INFINITY);
-                    break NewtonStatus::NonFinite(bad);
-                }
-            };
-            let grad_inf = norm_inf(&self.g);
-            let g0 = initial.get_or_insert((energy, grad_inf)).1;
-            last = (energy, grad_inf);
-
-            // 2. convergence
-            if grad_inf <= p.tol_abs || grad_inf <= p.tol_rel * g0 {
-                break NewtonStatus::Converged;
-            }
-            if iter >= p.max_iters {
-                break NewtonStatus::MaxIterations;
-            }
-
-            // 3. (H + δI) d = −∇E
-            let raw = used_filter == Filter::None;
-            let base_shift = if raw {
-                null_shift.max(0.1 * raw_shift)
-            } else {
-                null_shift
-            };
-            let t1 = Instant::now();
-            let prep = self.linear.prepare(
-                self.assembler.pattern(),
-                &mut self.values,
-                base_shift,
-                p.shift_attempts,
-            );
-            let t_factor = t1.elapsed().as_secs_f64();
-            times.factor += t_factor;
-            let prep = match prep {
-                Ok(i) => i,
-                Err(f) => break NewtonStatus::FactorizationFailed { shift: f.shift },
-            };
-            if raw {
-                raw_shift = prep.relative_shift;
-            }
-            let t2 = Instant::now();
-            self.rhs.iter_mut().zip(&self.g).for_each(|(r, g)| *r = -g);
-            let eta = (grad_inf / g0).sqrt().clamp(p.pcg_rel_min, p.pcg_rel_max);
-            let solve = self.linear.solve(
-                self.assembler.pattern(),
-                &self.values,
-                &self.rhs,
-                &mut self.d,
-                eta,
-                p.pcg_max_iters,
-            );
-            let t_solve = t2.elapsed().as_secs_f64();
-            times.solve += t_solve;
-            let slope = dot(&self.g, &self.d, &mut self.partials);
-            if slope.is_nan() || slope >= 0.0 || !slope.is_finite() {
-                break NewtonStatus::BadDirection { slope };
-            }
-
-            // 4. inversion-free bound and backtracking line search
-            let t3 = Instant::now();
-            self.dx
-                .par_iter_mut()
-                .with_min_len(4096)
-                .for_each(|v| *v = [0.0; D]);
-            self.assembler
-                .dofs()
-                .scatter(&self.d, self.dx.as_flattened_mut());
-            let alpha_max = self.assembler.max_step(&self.terms, x, &self.dx);
-            let alpha0 = if alpha_max.is_finite() {
-                (p.barrier_safety * alpha_max).min(1.0)
-            } else {
-                1.0
-            };
-            let (terms, assembler, xt, dx) =
-                (&self.terms, &mut self.assembler, &mut self.xt, &self.dx);
-            let ls = backtrack(energy, slope, alpha0, armijo, |alpha| {
-                xt.par_iter_mut()
-                    .zip(&*x)
-                    .zip(dx)
-                    .with_min_len(4096)
-                    .for_each(|((t, x), d)| {
-                        for c in 0..D {
-                            t[c] = x[c] + alpha * d[c];
-                        }
-                    });
-                assembler.energy(terms, xt, scale)
-            });
-            let t_line_search = t3.elapsed().as_secs_f64();
-            times.line_search += t_line_search;
-            let acc = match ls {
-                Ok(a) => a,
-                Err(last_step) => {
-                    break NewtonStatus::LineSearchFailed {
-                        last_step,
-                        max_step: alpha_max.is_finite().then_some(alpha_max),
-                    };
-                }
-            };
-
-            // 5. trust-region ratio for the adaptive policies (raw curvature along d at the old x)
-            let mut rho = None;
-            let mut t_rho = 0.0;
-            if p.filter_policy != FilterPolicy::Fixed {
-                let t4 = Instant::now();
-                let curv = self
-                    .assembler
-                    .raw_curvature(&self.terms, x, &self.dx, scale);
-                let a = acc.alpha;
-                let predicted = -(a * slope + 0.5 * a * a * curv);
-                let r = (energy - acc.energy) / predicted;
-                rho = Some(r);
-                filter = p.filter_policy.next(p.filter, r, p.adaptive_threshold);
-                t_rho = t4.elapsed().as_secs_f64();
-                times.assembly += t_rho;
-            }
-
-            // 6. accept: x ← x + α d (the accepted α was the last one evaluated into xt)
-            x.copy_from_slice(&self.xt);
-            let record = IterationRecord {
-                iter,
-                energy,
-                grad_inf,
-                step: acc.alpha,
-                max_step: alpha_max.is_finite().then_some(alpha_max),
-                decrement: -slope,
-                dx_inf: acc.alpha * norm_inf(&self.d),
-                filter: format!("{used_filter:?}"),
-                rho,
-                shift: prep.shift,
-                factorizations: prep.factorizations,
-                cg_iterations: solve.iterations,
-                line_search_evals: acc.evals,
-                noise_limited: acc.noise_limited,
-                t_assembly: t_assembly + t_rho,
-                t_factor,
-                t_solve,
-                t_line_search,
-            };
-            iter += 1;
-            let flow = callback(&record, x);
-            records.push(record);
-            if flow.is_break() {
-                // report the energy and gradient of the returned positions
-                let e = self
-                    .assembler
-                    .assemble(&self.terms, x, scale, &mut self.g, None);
-                last = match e {
-                    Ok(e) => (e, norm_inf(&self.g)),
-                    Err(_) => (self.assembler.energy(&self.terms, x, scale), f64::INFINITY),
-                };
-                break NewtonStatus::Interrupted;
+            if let Err(status) = self.iteration(x, &mut state, &mut callback) {
+                break status;
             }
         };
-        times.total = t_start.elapsed().as_secs_f64();
-        let (initial_energy, initial_grad_inf) = initial.unwrap_or(last);
-        let chol = self.linear.cholesky();
-        Ok(NewtonResult {
+        state.times.total = t_start.elapsed().as_secs_f64();
+        Ok(self.result(status, state))
+    }
+
+    /// The solve's report; the counters cover this solver's whole life
+    /// (every linear backend it has had).
+    fn result(&self, status: NewtonStatus, s: SolveState) -> NewtonResult {
+        let (initial_energy, initial_grad_inf) = s.initial.unwrap_or(s.last);
+        let factorizations = self
+            .linear
+            .cholesky()
+            .map_or(0, |c| c.numeric_factorizations());
+        NewtonResult {
             status,
-            iterations: iter,
+            iterations: s.iter,
             initial_energy,
-            energy: last.0,
+            energy: s.last.0,
             initial_grad_inf,
-            grad_inf: last.1,
+            grad_inf: s.last.1,
             unknowns: self.g.len(),
             linear_solver: self.linear.kind(),
-            symbolic_analyses: chol.map_or(0, |c| c.symbolic_analyses()),
-            numeric_factorizations: chol.map_or(0, |c| c.numeric_factorizations()),
-            times,
+            symbolic_analyses: self.earlier.0 + self.linear.symbolic_analyses(),
+            numeric_factorizations: self.earlier.1 + factorizations,
+            times: s.times,
             terms: self.assembler.timings().to_vec(),
-            records,
-        })
+            records: s.records,
+        }
     }
 }
