@@ -11,7 +11,7 @@ use num_rational::BigRational;
 use num_traits::Signed;
 
 use super::ast::BinOp;
-use super::sema::{Func, Program, RExpr, Var, mentions_d};
+use super::resolved::{Func, Program, RExpr, Var, mentions_d};
 use crate::cas::{Graph, Id, Sym};
 use crate::diag::Error;
 
@@ -55,6 +55,13 @@ pub fn lower_expr(
         RExpr::Neg(x) => {
             let v = lower_expr(g, x, dim, lets, lets_d, errors)?;
             g.neg(v)
+        }
+        RExpr::Chain(first, rest)
+            if rest
+                .iter()
+                .all(|(op, ..)| matches!(op, BinOp::Add | BinOp::Sub)) =>
+        {
+            lower_sum(g, first, rest, dim, lets, lets_d, errors)?
         }
         RExpr::Chain(first, rest) => {
             let mut acc = lower_expr(g, first, dim, lets, lets_d, errors);
@@ -116,6 +123,38 @@ pub fn lower_expr(
         }
         RExpr::Poison => return None,
     })
+}
+
+/// A run of `+`/`-` as one canonical sum (adding term by term would
+/// re-collect the growing sum at every step: quadratic in its length). The
+/// result is the same node: sums are flattened and like terms collected.
+fn lower_sum(
+    g: &mut Graph,
+    first: &RExpr,
+    rest: &[(BinOp, RExpr, crate::span::Span)],
+    dim: u8,
+    lets: &[Option<Id>],
+    lets_d: &[bool],
+    errors: &mut Vec<Error>,
+) -> Option<Id> {
+    let mut terms = Vec::with_capacity(rest.len() + 1);
+    let mut ok = match lower_expr(g, first, dim, lets, lets_d, errors) {
+        Some(a) => {
+            terms.push(a);
+            true
+        }
+        None => false,
+    };
+    for (op, x, _) in rest {
+        match lower_expr(g, x, dim, lets, lets_d, errors) {
+            Some(b) if ok => terms.push(match op {
+                BinOp::Sub => g.neg(b),
+                _ => b,
+            }),
+            _ => ok = false,
+        }
+    }
+    ok.then(|| g.sum(&terms))
 }
 
 fn half() -> BigRational {
