@@ -3,6 +3,7 @@
 pub mod ast;
 pub mod lower;
 pub mod parse;
+pub mod resolved;
 pub mod sema;
 pub mod split;
 mod suggest;
