@@ -2,7 +2,7 @@
 
 use std::collections::HashMap;
 
-use ecc_dsl::{DimIr, Id, Module, PairIr, ScaleIr, Sym};
+use ecc_dsl::{DimIr, Id, Module, PairIr, PairKind, ScaleIr, Sym};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
@@ -162,6 +162,13 @@ fn validate(d: &DimIr, n_params: usize) -> Result<(), CodegenError> {
             "{} twist and {} flip slots, expected {p}",
             d.spectral.twist.len(),
             d.spectral.flip.len()
+        )));
+    }
+    let kinds = (d.spectral.twist_kind.len(), d.spectral.flip_kind.len());
+    if kinds != (p, p) {
+        return Err(bad(format!(
+            "{} twist and {} flip kinds, expected {p}",
+            kinds.0, kinds.1
         )));
     }
     for pr in d.spectral.twist.iter().chain(&d.spectral.flip) {
@@ -506,32 +513,35 @@ fn pair_name(kind: &str, dim: u8, slot: usize) -> String {
     format!("{kind}_{i}{j}")
 }
 
-/// The spectral function: Ψ, the domain check, gradient, scaling block and
-/// the twist/flip pairs (guarded ones as a lazy `if`).
-fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
-    let rt = &ctx.rt;
-    let dim = d.dim as usize;
-    let dim_lit = int(dim);
+/// A guarded pair: its slot, local name, the IR ids and its two branch regions.
+struct Guard {
+    slot: usize,
+    name: String,
+    direct: Id,
+    limit: Id,
+    den: Id,
+    branches: (u32, u32),
+}
+
+/// The roots of the spectral function (Ψ, gradient, scaling block, pairs) and
+/// the guarded pairs among them.
+fn spectral_roots(d: &DimIr) -> (Vec<Root>, Vec<Guard>) {
     let sp = &d.spectral;
-    let mut roots = vec![Root {
-        id: d.psi,
-        region: Region::Psi,
-        name: "psi".into(),
-        bind: true,
-    }];
     let main = |id: Id, name: String| Root {
         id,
         region: Region::Main,
         name,
         bind: true,
     };
+    let mut roots = vec![Root {
+        id: d.psi,
+        region: Region::Psi,
+        name: "psi".into(),
+        bind: true,
+    }];
     for (i, &g) in sp.grad.iter().enumerate() {
         roots.push(main(g, format!("psi_s{}", i + 1)));
     }
-    let scale_ids: Vec<Vec<Id>> = match &sp.scale {
-        ScaleIr::Diagonal(a) => a.iter().map(|&x| vec![x]).collect(),
-        ScaleIr::Full(a) => a.clone(),
-    };
     match &sp.scale {
         ScaleIr::Diagonal(a) => {
             for (i, &x) in a.iter().enumerate() {
@@ -546,7 +556,6 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
             }
         }
     }
-    // Guarded pairs: (slot, kind, direct, limit, den, branch ids).
     let mut guards = Vec::new();
     let mut branch = 0u32;
     for (kind, list) in [("twist", &sp.twist), ("flip", &sp.flip)] {
@@ -571,36 +580,36 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
                             bind: false,
                         });
                     }
-                    guards.push((slot, name, direct, limit, den, bl, bd));
+                    guards.push(Guard {
+                        slot,
+                        name,
+                        direct,
+                        limit,
+                        den,
+                        branches: (bl, bd),
+                    });
                 }
             }
         }
     }
-    let namer = leaf_namer(ctx);
-    let mut taken: Vec<&str> = RESERVED.to_vec();
-    taken.extend(guards.iter().map(|g| g.1.as_str()));
-    let plan = Plan::new(&d.graph, d.dim, &roots, &hints(d), &namer, &taken);
-    let mut extra_sigma = Vec::new();
-    for (slot, ..) in &guards {
-        let (i, j) = pair_label(d.dim, *slot);
-        extra_sigma.extend([i - 1, j - 1]);
-    }
-    let prelude = prelude(ctx, d.dim, &plan, &extra_sigma);
-    let psi_lets = plan.lets(Region::Psi);
-    let (bind, psi) = psi_binding(&plan, d.psi);
-    let main_lets = plan.lets(Region::Main);
-    let mut guard_lets = TokenStream::new();
-    let mut guard_names: HashMap<(String, usize), Ident> = HashMap::new();
-    for (slot, name, direct, limit, den, bl, bd) in &guards {
-        let (i, j) = pair_label(d.dim, *slot);
+    (roots, guards)
+}
+
+/// `let twist_12 = if |den| <= τ·max(|s1|, |s2|) { limit } else { direct };`
+/// per guarded pair (the branches' bindings live inside their arm).
+fn guard_lets(rt: &TokenStream, d: &DimIr, plan: &Plan, guards: &[Guard]) -> TokenStream {
+    let mut out = TokenStream::new();
+    for g in guards {
+        let (i, j) = pair_label(d.dim, g.slot);
         let (si, sj) = (format_ident!("s{}", i), format_ident!("s{}", j));
-        let abs_den = Ex::Method(Box::new(plan.value_ex(*den)), "abs", vec![]).tokens();
-        let lim_lets = plan.lets(Region::Branch(*bl));
-        let lim_v = plan.value(*limit);
-        let dir_lets = plan.lets(Region::Branch(*bd));
-        let dir_v = plan.value(*direct);
-        let var = format_ident!("{}", name);
-        guard_lets.extend(quote! {
+        let abs_den = Ex::Method(Box::new(plan.value_ex(g.den)), "abs", vec![]).tokens();
+        let (bl, bd) = g.branches;
+        let lim_lets = plan.lets(Region::Branch(bl));
+        let lim_v = plan.value(g.limit);
+        let dir_lets = plan.lets(Region::Branch(bd));
+        let dir_v = plan.value(g.direct);
+        let var = format_ident!("{}", g.name);
+        out.extend(quote! {
             let #var = if #abs_den <= #rt::divided::LIMIT_TOL * #si.abs().max(#sj.abs()) {
                 #lim_lets
                 #lim_v
@@ -609,51 +618,105 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
                 #dir_v
             };
         });
-        let kind = name.split('_').next().unwrap_or_default().to_string();
-        guard_names.insert((kind, *slot), var);
     }
+    out
+}
+
+/// The stretches a pair's guard or pole test reads (0-based).
+fn pair_sigmas(d: &DimIr, guards: &[Guard]) -> Vec<usize> {
+    let mut out = Vec::new();
+    for g in guards {
+        let (i, j) = pair_label(d.dim, g.slot);
+        out.extend([i - 1, j - 1]);
+    }
+    for (slot, kind) in d.spectral.twist_kind.iter().enumerate() {
+        if *kind == PairKind::Pole {
+            let (i, j) = pair_label(d.dim, slot);
+            out.extend([i - 1, j - 1]);
+        }
+    }
+    out
+}
+
+/// The `ScaleBlock` expression.
+fn scale_tokens(rt: &TokenStream, d: &DimIr, plan: &Plan) -> TokenStream {
+    match &d.spectral.scale {
+        ScaleIr::Diagonal(a) => {
+            let v: Vec<TokenStream> = a.iter().map(|&x| plan.value(x)).collect();
+            quote!(#rt::ScaleBlock::Diagonal([#(#v),*]))
+        }
+        ScaleIr::Full(a) => {
+            let n = d.dim as usize;
+            let rows: Vec<TokenStream> = (0..n)
+                .map(|i| {
+                    let v: Vec<TokenStream> =
+                        (0..n).map(|j| plan.value(a[i.min(j)][i.max(j)])).collect();
+                    quote!([#(#v),*])
+                })
+                .collect();
+            quote!(#rt::ScaleBlock::Full([#(#rows),*]))
+        }
+    }
+}
+
+/// The three slot values of `twist` or `flip`: a closed form, the guarded
+/// local, or for a pole `+∞` exactly on σi + σj = 0 (never NaN) and the
+/// quotient elsewhere; unused 2D slots are 0.
+fn slot_values(
+    d: &DimIr,
+    plan: &Plan,
+    kind: &str,
+    list: &[PairIr],
+    kinds: &[PairKind],
+) -> Vec<TokenStream> {
+    let mut v: Vec<TokenStream> = list
+        .iter()
+        .enumerate()
+        .map(|(slot, pr)| match *pr {
+            PairIr::Exact(x) if kinds.get(slot) == Some(&PairKind::Pole) => {
+                let (i, j) = pair_label(d.dim, slot);
+                let (si, sj) = (format_ident!("s{}", i), format_ident!("s{}", j));
+                let val = plan.value(x);
+                quote!(if #si + #sj == 0.0 { f64::INFINITY } else { #val })
+            }
+            PairIr::Exact(x) => plan.value(x),
+            PairIr::Guarded { .. } => {
+                let var = format_ident!("{}", pair_name(kind, d.dim, slot));
+                quote!(#var)
+            }
+        })
+        .collect();
+    while v.len() < 3 {
+        v.push(quote!(0.0));
+    }
+    v
+}
+
+/// The spectral function: Ψ, the domain check, gradient, scaling block and
+/// the twist/flip pairs (guarded ones as a lazy `if`, poles +∞ on their plane).
+fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
+    let rt = &ctx.rt;
+    let dim_lit = int(d.dim as usize);
+    let sp = &d.spectral;
+    let (roots, guards) = spectral_roots(d);
+    let namer = leaf_namer(ctx);
+    let mut taken: Vec<&str> = RESERVED.to_vec();
+    taken.extend(guards.iter().map(|g| g.name.as_str()));
+    let plan = Plan::new(&d.graph, d.dim, &roots, &hints(d), &namer, &taken);
+    let prelude = prelude(ctx, d.dim, &plan, &pair_sigmas(d, &guards));
+    let psi_lets = plan.lets(Region::Psi);
+    let (bind, psi) = psi_binding(&plan, d.psi);
+    let main_lets = plan.lets(Region::Main);
+    let guard_lets = guard_lets(rt, d, &plan, &guards);
     let psi_field = if psi.to_string() == "psi" {
         quote!(psi)
     } else {
         quote!(psi: #psi)
     };
     let grad: Vec<TokenStream> = sp.grad.iter().map(|&g| plan.value(g)).collect();
-    let scale = match &sp.scale {
-        ScaleIr::Diagonal(a) => {
-            let v: Vec<TokenStream> = a.iter().map(|&x| plan.value(x)).collect();
-            quote!(#rt::ScaleBlock::Diagonal([#(#v),*]))
-        }
-        ScaleIr::Full(_) => {
-            let rows: Vec<TokenStream> = (0..dim)
-                .map(|i| {
-                    let v: Vec<TokenStream> = (0..dim)
-                        .map(|j| plan.value(scale_ids[i.min(j)][i.max(j)]))
-                        .collect();
-                    quote!([#(#v),*])
-                })
-                .collect();
-            quote!(#rt::ScaleBlock::Full([#(#rows),*]))
-        }
-    };
-    let slot_values = |kind: &str, list: &[PairIr]| -> Vec<TokenStream> {
-        let mut v: Vec<TokenStream> = list
-            .iter()
-            .enumerate()
-            .map(|(slot, pr)| match *pr {
-                PairIr::Exact(x) => plan.value(x),
-                PairIr::Guarded { .. } => {
-                    let var = &guard_names[&(kind.to_string(), slot)];
-                    quote!(#var)
-                }
-            })
-            .collect();
-        while v.len() < 3 {
-            v.push(quote!(0.0));
-        }
-        v
-    };
-    let twist = slot_values("twist", &sp.twist);
-    let flip = slot_values("flip", &sp.flip);
+    let scale = scale_tokens(rt, d, &plan);
+    let twist = slot_values(d, &plan, "twist", &sp.twist, &sp.twist_kind);
+    let flip = slot_values(d, &plan, "flip", &sp.flip, &sp.flip_kind);
     quote! {
         fn spectral(&self, sigma: &[f64; #dim_lit]) -> #rt::Spectral<#dim_lit> {
             #prelude

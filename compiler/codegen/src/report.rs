@@ -4,7 +4,7 @@
 
 use std::fmt::Write;
 
-use ecc_dsl::{DimIr, Module, PairIr, Path, ScaleIr};
+use ecc_dsl::{DimIr, Module, PairIr, PairKind, Path, ScaleIr};
 
 use crate::summary::{pair_label, params_line};
 
@@ -148,6 +148,7 @@ fn dim_section(out: &mut String, d: &DimIr) {
         out,
         "τ = ecc_runtime::divided::LIMIT_TOL ≈ 6.1e-6 (ε^(1/3)): the same switch as the runtime.\n"
     );
+    divided_differences(out, d);
     let _ = writeln!(out, "### Singularities\n");
     if d.singularities.is_empty() {
         let _ = writeln!(
@@ -180,4 +181,48 @@ fn dim_section(out: &mut String, d: &DimIr) {
         }
         out.push('\n');
     }
+}
+
+/// Per divided difference, what it does on its singular set, as the CAS
+/// decided it: no division, removable (with the limit used there), or a pole.
+fn divided_differences(out: &mut String, d: &DimIr) {
+    let _ = writeln!(
+        out,
+        "### Divided differences on σi = ±σj
+"
+    );
+    let _ = writeln!(
+        out,
+        "| divided difference | on its singular set |\n|---|---|"
+    );
+    let lists = [
+        ("twist", "+", &d.spectral.twist, &d.spectral.twist_kind),
+        ("flip", "−", &d.spectral.flip, &d.spectral.flip_kind),
+    ];
+    for (kind, sign, list, kinds) in lists {
+        for (slot, pr) in list.iter().enumerate() {
+            let (i, j) = pair_label(d.dim, slot);
+            let what = format!("{kind} (Ψ{i} {sign} Ψ{j})/(s{i} {sign} s{j})");
+            let plane = if sign == "+" {
+                format!("s{i} = −s{j}")
+            } else {
+                format!("s{i} = s{j}")
+            };
+            let verdict = match (kinds.get(slot), pr) {
+                (Some(PairKind::Regular), _) => "no division (closed form)".to_string(),
+                (Some(PairKind::Removable), PairIr::Guarded { limit, .. }) => {
+                    format!("removable on {plane} (limit {})", code(d, *limit))
+                }
+                (Some(PairKind::Removable), PairIr::Exact(x)) => {
+                    format!("removable on {plane} (exact quotient {})", code(d, *x))
+                }
+                (Some(PairKind::Pole), _) => {
+                    format!("pole on {plane} (genuine singularity: +∞ there)")
+                }
+                (None, _) => "not classified".to_string(),
+            };
+            let _ = writeln!(out, "| {what} | {verdict} |");
+        }
+    }
+    out.push('\n');
 }

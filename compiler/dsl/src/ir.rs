@@ -117,6 +117,28 @@ pub struct SpectralIr {
     pub twist: Vec<PairIr>,
     /// λ_flip = (Ψi − Ψj)/(σi − σj), one per pair slot.
     pub flip: Vec<PairIr>,
+    /// What each twist does on σi + σj = 0, one per pair slot.
+    pub twist_kind: Vec<PairKind>,
+    /// What each flip does on σi = σj, one per pair slot.
+    pub flip_kind: Vec<PairKind>,
+}
+
+/// What a divided difference does on its singular set (σi = σj for a flip,
+/// σi = −σj for a twist), decided by the CAS at compile time: the numerator
+/// (Ψi ∓ Ψj, or Ψ1 for the invariant-path twist) with σj := ±σi substituted
+/// is simplified exactly; ≡ 0 proves the singularity removable.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PairKind {
+    /// No division at all (invariant-path flips 2Ψ2 ∓ c_ij Ψ3; twists with Ψ1 ≡ 0).
+    Regular,
+    /// The numerator vanishes identically on the set: 0/0 with a finite limit,
+    /// which every back end uses there (`PairIr::Guarded`, or an exact
+    /// quotient when the energy is rational).
+    Removable,
+    /// The numerator does not vanish identically there (or that could not be
+    /// decided): a genuine pole of the energy. Every back end gives +∞ exactly
+    /// on the set (never NaN) and the quotient elsewhere.
+    Pole,
 }
 
 /// The scaling block A = ∂²Ψ/∂σ².
@@ -132,18 +154,20 @@ pub enum ScaleIr {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PairIr {
     /// Singularity-free after exact division, or a genuine singularity of the
-    /// energy left visible (ARAP's 2Ψ1/(σi+σj)).
+    /// energy left visible (ARAP's 2Ψ1/(σi+σj); see [`PairKind::Pole`]).
     Exact(Id),
     /// Use `direct` unless |den| is tiny, then `limit`
     /// ((A_ii + A_jj)/2 ∓ A_ij); `den` is σi − σj (flip) or σi + σj (twist).
     ///
-    /// `limit` is exact on the hyperplane and off by O(|den|) near it, while
+    /// `limit` is exact on the hyperplane and off by O(|den|²) near it (for a
+    /// twist without sign symmetry it carries the first-order correction
+    /// −(∂i + ∂j)(A_ii + 2A_ij + A_jj)·den/8, see `ecc_runtime::divided`), while
     /// `direct` loses about ε·|Ψ_σ|/|den| to cancellation, so a switch at
-    /// |den| ≈ √ε·(|σi| + |σj|) balances the two errors.
+    /// |den| ≈ ε^{1/3}·max(|σi|, |σj|) balances the two errors.
     Guarded {
         /// The divided difference as written.
         direct: Id,
-        /// Its limit on the hyperplane `den = 0`.
+        /// Its limit on the hyperplane `den = 0` (corrected to second order off it).
         limit: Id,
         /// The denominator.
         den: Id,

@@ -58,7 +58,9 @@ pub mod testing;
 pub use cas::{Env, Graph, Id, Node, Sym, Tape, eval, eval_many};
 pub use compile::{compile, compile_dim, slot_pairs};
 pub use diag::{Diagnostics, Error};
-pub use ir::{DimIr, InvariantDerivs, Module, PairIr, ParamDecl, Path, ScaleIr, SpectralIr};
+pub use ir::{
+    DimIr, InvariantDerivs, Module, PairIr, PairKind, ParamDecl, Path, ScaleIr, SpectralIr,
+};
 pub use load::{LoadError, Source, energy_name, load_file, load_text};
 pub use poly::Proof;
 pub use span::Span;

@@ -10,18 +10,34 @@
 //!
 //! This deliberately bypasses the CAS-specialised [`ecc_dsl::SpectralIr`] that
 //! generated code evaluates, so generated code and the interpreter check each
-//! other. Ψ = NaN (e.g. log of a negative number) is reported as +∞: the point
-//! is outside the energy's domain.
+//! other. Only what the CAS *decided* about each twist on σi + σj = 0
+//! ([`ecc_dsl::PairKind`]) is taken from it: a pole gives +∞ there, a removable
+//! twist its limit — for a sign-symmetric Ψ the runtime's (A_ii + A_jj)/2 + A_ij,
+//! otherwise the IR's second-order corrected limit, evaluated by the same tape
+//! ([`ecc_runtime::divided::TwistRule`]). Ψ = NaN (e.g. log of a negative
+//! number) is reported as +∞: the point is outside the energy's domain.
 
-use ecc_dsl::{DimIr, Path, Sym};
+use ecc_dsl::{DimIr, PairIr, PairKind, Path, Sym};
+use ecc_runtime::divided::TwistRule;
+use ecc_runtime::invariants::spectral_from_invariants_with;
+use ecc_runtime::stretch::spectral_from_stretch_with;
 use ecc_runtime::{Energy, EnergyInfo, ParamError, Spectral};
-use ecc_runtime::{spectral_from_invariants, spectral_from_stretch};
 
 use crate::error::BuildError;
 use crate::tape::Tape;
 
-/// Outputs of the full tape: Ψ, then 9 invariant derivatives or D + D² stretch ones.
-const MAX_OUT: usize = 1 + 3 + 9;
+/// Outputs of the full tape: Ψ, then 9 invariant derivatives or D + D² stretch
+/// ones, then up to 3 removable-twist limits.
+const MAX_OUT: usize = 1 + 3 + 9 + 3;
+
+/// How the twist of one pair slot is resolved on σi + σj = 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum TwistSpec {
+    /// A fixed rule (regular, sign-symmetric limit, pole).
+    Fixed(TwistRule),
+    /// Removable without sign symmetry: the limit is tape output `k`.
+    LimitAt(usize),
+}
 
 /// An energy evaluated by interpreting its CAS graph (no code generation, no rebuild).
 #[derive(Clone, Debug)]
@@ -38,7 +54,7 @@ pub struct InterpEnergy<const D: usize> {
     param_values: Vec<f64>,
     info: EnergyInfo,
     decoupled: bool,
-    sign_symmetric: bool,
+    twist: [TwistSpec; 3],
 }
 
 /// Ψ values that mean "outside the domain" — NaN (log of a negative
@@ -107,6 +123,7 @@ impl<const D: usize> InterpEnergy<D> {
                 roots.extend(ir.h_sigma.iter().flatten().copied());
             }
         }
+        let twist = twist_specs(ir, &mut roots)?;
         // Trust `svd_free` only when Ψ really reads neither I1 nor σ.
         let svd_free = ir.svd_free && !g.uses_sigma(ir.psi) && !g.may_depend(ir.psi, Sym::I1);
         let psi_tape = Tape::compile(g, &[ir.psi])?;
@@ -127,7 +144,7 @@ impl<const D: usize> InterpEnergy<D> {
                 svd_free_psi: svd_free,
             },
             decoupled: ir.decoupled,
-            sign_symmetric: ir.sign_symmetric,
+            twist,
         })
     }
 
@@ -146,6 +163,35 @@ impl<const D: usize> InterpEnergy<D> {
         self.psi_tape.eval(&self.psi_frozen, sigma, inv, &mut out);
         domain(out[0])
     }
+}
+
+/// The twist rule of each pair slot from the IR's [`PairKind`]s; the limits
+/// of removable twists without sign symmetry are appended to `roots` (their
+/// tape output index is recorded). Unused slots are [`TwistRule::Regular`].
+fn twist_specs(ir: &DimIr, roots: &mut Vec<ecc_dsl::Id>) -> Result<[TwistSpec; 3], BuildError> {
+    let sp = &ir.spectral;
+    if sp.twist_kind.len() != sp.twist.len() || sp.twist.len() > 3 {
+        return Err(BuildError::MissingDerivatives {
+            what: "twist kinds (spectral.twist_kind)",
+        });
+    }
+    let mut specs = [TwistSpec::Fixed(TwistRule::Regular); 3];
+    for (k, (pair, kind)) in sp.twist.iter().zip(&sp.twist_kind).enumerate() {
+        specs[k] = match kind {
+            PairKind::Regular => TwistSpec::Fixed(TwistRule::Regular),
+            PairKind::Pole => TwistSpec::Fixed(TwistRule::Pole),
+            PairKind::Removable if ir.sign_symmetric => TwistSpec::Fixed(TwistRule::SignSymmetric),
+            PairKind::Removable => {
+                let limit = match *pair {
+                    PairIr::Guarded { limit, .. } => limit,
+                    PairIr::Exact(q) => q,
+                };
+                roots.push(limit);
+                TwistSpec::LimitAt(roots.len() - 1)
+            }
+        };
+    }
+    Ok(specs)
 }
 
 impl<const D: usize> Energy<D> for InterpEnergy<D> {
@@ -168,16 +214,20 @@ impl<const D: usize> Energy<D> for InterpEnergy<D> {
         if psi == f64::INFINITY {
             return Spectral::infinite();
         }
+        let rules = self.twist.map(|t| match t {
+            TwistSpec::Fixed(r) => r,
+            TwistSpec::LimitAt(k) => TwistRule::Removable(out[k]),
+        });
         match self.path {
             Path::Invariant => {
                 let d1 = [out[1], out[2], out[3]];
                 let d2 = std::array::from_fn(|k| out[4 + k]);
-                spectral_from_invariants(sigma, psi, d1, d2, self.decoupled, self.sign_symmetric)
+                spectral_from_invariants_with(sigma, psi, d1, d2, self.decoupled, rules)
             }
             Path::Stretch => {
                 let grad = std::array::from_fn(|i| out[1 + i]);
                 let hess = std::array::from_fn(|i| std::array::from_fn(|j| out[1 + D + i * D + j]));
-                spectral_from_stretch(sigma, psi, grad, hess, self.sign_symmetric)
+                spectral_from_stretch_with(sigma, psi, grad, hess, rules)
             }
         }
     }

@@ -71,6 +71,54 @@ pub fn twist_value(
     }
 }
 
+/// How a twist (Ψ_i + Ψ_j)/(σ_i + σ_j) behaves on σ_i + σ_j = 0, as the
+/// compiler decided it (see `ecc_dsl::PairKind`).
+///
+/// **Removable without sign symmetry.** When Ψ_i + Ψ_j vanishes on the plane
+/// but is not odd about it, the plain limit (A_ii + A_jj)/2 + A_ij evaluated
+/// off the plane is only first-order accurate. With N(t) = Ψ_i + Ψ_j along
+/// σ_i, σ_j ↦ σ_i + t/2, σ_j + t/2 (so the gap grows by t, d/dt = (∂_i + ∂_j)/2),
+/// N(t)/t = N′(0) + N″(0)t/2 + O(t²) while N′(t) = N′(0) + N″(0)t + O(t²), so
+///
+/// λ_t ≈ N′(t) − N″(t)·t/2 = (A_ii + A_jj)/2 + A_ij − (∂_i + ∂_j)(A_ii + 2A_ij + A_jj)·(σ_i + σ_j)/8
+///
+/// is second-order accurate and keeps the ε^{1/3} switch's ε^{2/3} error. The
+/// compiler builds that expression; [`TwistRule::Removable`] carries its value.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TwistRule {
+    /// No division to resolve (invariant path with Ψ1 ≡ 0), or undeclared:
+    /// the quotient as written (0/0 on the plane is taken as its finite part
+    /// on the invariant path, +∞ on the stretch path).
+    Regular,
+    /// Ψ sign-symmetric: removable, limit (A_ii + A_jj)/2 + A_ij (error O(δ²)).
+    SignSymmetric,
+    /// Removable without sign symmetry: the compiler's corrected limit at this
+    /// point, used within the switch band.
+    Removable(f64),
+    /// A genuine pole of the energy (or not decided): the direct quotient,
+    /// and +∞ exactly on σ_i + σ_j = 0 (never NaN).
+    Pole,
+}
+
+/// λ_twist under `rule` (see [`TwistRule`]); `direct` computes the quotient
+/// away from the plane (only called when it is used).
+#[inline]
+pub fn twist_by_rule(
+    si: f64,
+    sj: f64,
+    sym_limit: impl FnOnce() -> f64,
+    direct: impl FnOnce() -> f64,
+    rule: TwistRule,
+) -> f64 {
+    let near = near_antipodal(si, sj);
+    match rule {
+        TwistRule::SignSymmetric if near => sym_limit(),
+        TwistRule::Removable(l) if near => l,
+        TwistRule::Pole if si + sj == 0.0 => f64::INFINITY,
+        _ => direct(),
+    }
+}
+
 /// True when σ_i + σ_j is within the twist switch band (see [`twist_value`]).
 #[inline]
 pub fn near_antipodal(si: f64, sj: f64) -> bool {

@@ -19,13 +19,16 @@
 //!   scaling modes decoupled (a_ij ≡ 0) only the diagonal is formed
 //!   (eqs. 26–27, App. E) and no eigensolve is needed.
 //!
-//! The only division is 2Ψ1/(σ_i+σ_j). For a sign-symmetric energy whose
-//! representation still uses I1 (e.g. 3D Symmetric Dirichlet, eq. 32) the
-//! individual terms blow up while their sum stays finite; within the switch
-//! band of [`crate::divided`] the twist is then taken as the limit
-//! (a_ii + a_jj)/2 + a_ij. Otherwise (not sign-symmetric) the pole is genuine.
+//! The only division is 2Ψ1/(σ_i+σ_j). Where Ψ1 vanishes identically on
+//! σ_i + σ_j = 0 the singularity is removable: for a sign-symmetric energy
+//! whose representation still uses I1 (e.g. 3D Symmetric Dirichlet, eq. 32)
+//! the individual terms blow up while their sum stays finite, and within the
+//! switch band of [`crate::divided`] the twist is the limit
+//! (a_ii + a_jj)/2 + a_ij; without sign symmetry (2D I1²·e^{I1}) the compiler
+//! supplies the corrected limit ([`TwistRule::Removable`]). Otherwise the
+//! pole is genuine: +∞ exactly on it ([`TwistRule::Pole`]).
 
-use crate::divided::near_antipodal;
+use crate::divided::{TwistRule, twist_by_rule};
 use crate::spectral::{PAIRS_3D, ScaleBlock, Spectral};
 
 /// Ψ's stretch-space description from its invariant derivatives.
@@ -34,6 +37,7 @@ use crate::spectral::{PAIRS_3D, ScaleBlock, Spectral};
 /// declares a_ij ≡ 0 (diagonal scaling block); `sign_symmetric` declares
 /// Ψ(…σ_i…σ_j…) = Ψ(…−σ_j…−σ_i…) (see the module docs). `psi = +∞` yields
 /// [`Spectral::infinite`]. D must be 2 or 3 (checked at compile time).
+/// [`spectral_from_invariants_with`] takes a [`TwistRule`] per pair instead.
 pub fn spectral_from_invariants<const D: usize>(
     sigma: &[f64; D],
     psi: f64,
@@ -41,6 +45,24 @@ pub fn spectral_from_invariants<const D: usize>(
     d2: [f64; 6],
     decoupled: bool,
     sign_symmetric: bool,
+) -> Spectral<D> {
+    let rule = if sign_symmetric {
+        TwistRule::SignSymmetric
+    } else {
+        TwistRule::Regular
+    };
+    spectral_from_invariants_with(sigma, psi, d1, d2, decoupled, [rule; 3])
+}
+
+/// [`spectral_from_invariants`] with the twist of pair slot k resolved by
+/// `twist[k]` (what the compiler proved about σ_i + σ_j = 0; 2D uses slot 0).
+pub fn spectral_from_invariants_with<const D: usize>(
+    sigma: &[f64; D],
+    psi: f64,
+    d1: [f64; 3],
+    d2: [f64; 6],
+    decoupled: bool,
+    twist: [TwistRule; 3],
 ) -> Spectral<D> {
     const {
         assert!(
@@ -54,9 +76,9 @@ pub fn spectral_from_invariants<const D: usize>(
     let mut s3 = [0.0; 3];
     s3[..D].copy_from_slice(sigma);
     let (grad, a, twist, flip) = if D == 2 {
-        invariants_2d([s3[0], s3[1]], d1, d2, decoupled, sign_symmetric)
+        invariants_2d([s3[0], s3[1]], d1, d2, decoupled, twist[0])
     } else {
-        invariants_3d(s3, d1, d2, decoupled, sign_symmetric)
+        invariants_3d(s3, d1, d2, decoupled, twist)
     };
     let scale = if decoupled {
         ScaleBlock::Diagonal(std::array::from_fn(|i| a[i][i]))
@@ -72,6 +94,20 @@ pub fn spectral_from_invariants<const D: usize>(
     }
 }
 
+/// The twist 2Ψ1/(σ_i+σ_j) + `base` under `rule`. The limit comes first: on
+/// σ_i = −σ_j a removable Ψ1 is 0 while 2Ψ1/(σ_i + σ_j) tends to a non-zero
+/// limit; Ψ1 == 0 elsewhere drops the (then exactly zero) quotient.
+fn twist_inv(si: f64, sj: f64, p1: f64, base: f64, sym_limit: f64, rule: TwistRule) -> f64 {
+    let direct = || {
+        if p1 == 0.0 {
+            base
+        } else {
+            2.0 * p1 / (si + sj) + base
+        }
+    };
+    twist_by_rule(si, sj, || sym_limit, direct, rule)
+}
+
 type Parts = ([f64; 3], [[f64; 3]; 3], [f64; 3], [f64; 3]);
 
 fn invariants_2d(
@@ -79,7 +115,7 @@ fn invariants_2d(
     d1: [f64; 3],
     d2: [f64; 6],
     decoupled: bool,
-    sign_symmetric: bool,
+    rule: TwistRule,
 ) -> Parts {
     let [p1, p2, p3] = d1;
     let [p11, p22, p33, p12, p13, p23] = d2;
@@ -108,15 +144,8 @@ fn invariants_2d(
         a[0][1] = a01;
         a[1][0] = a01;
     }
-    // The limit comes first: on σ_i = −σ_j a sign-symmetric Ψ has Ψ1 = 0 while
-    // 2Ψ1/(σ_i + σ_j) tends to a non-zero limit.
-    let twist0 = if sign_symmetric && near_antipodal(s[0], s[1]) {
-        0.5 * (a[0][0] + a[1][1]) + a[0][1]
-    } else if p1 == 0.0 {
-        2.0 * p2 + p3
-    } else {
-        2.0 * p1 / i1 + 2.0 * p2 + p3
-    };
+    let sym_limit = 0.5 * (a[0][0] + a[1][1]) + a[0][1];
+    let twist0 = twist_inv(s[0], s[1], p1, 2.0 * p2 + p3, sym_limit, rule);
     (grad, a, [twist0, 0.0, 0.0], [2.0 * p2 - p3, 0.0, 0.0])
 }
 
@@ -125,7 +154,7 @@ fn invariants_3d(
     d1: [f64; 3],
     d2: [f64; 6],
     decoupled: bool,
-    sign_symmetric: bool,
+    rules: [TwistRule; 3],
 ) -> Parts {
     let [p1, p2, p3] = d1;
     let [p11, p22, p33, p12, p13, p23] = d2;
@@ -163,14 +192,8 @@ fn invariants_3d(
     let mut flip = [0.0; 3];
     for (k, &(i, j)) in PAIRS_3D.iter().enumerate() {
         let base = 2.0 * p2 + s[k] * p3;
-        // Limit first (see the 2D case): Ψ1 vanishes on σ_i = −σ_j.
-        twist[k] = if sign_symmetric && near_antipodal(s[i], s[j]) {
-            0.5 * (a[i][i] + a[j][j]) + a[i][j]
-        } else if p1 == 0.0 {
-            base
-        } else {
-            2.0 * p1 / (s[i] + s[j]) + base
-        };
+        let sym_limit = 0.5 * (a[i][i] + a[j][j]) + a[i][j];
+        twist[k] = twist_inv(s[i], s[j], p1, base, sym_limit, rules[k]);
         flip[k] = 2.0 * p2 - s[k] * p3;
     }
     (grad, a, twist, flip)

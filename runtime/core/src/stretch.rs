@@ -6,7 +6,7 @@
 //! sign-symmetric energies, σ_i = −σ_j use the exact limits instead of a
 //! vanishing difference.
 
-use crate::divided::{flip_value, twist_value};
+use crate::divided::{TwistRule, flip_value, twist_by_rule};
 use crate::spectral::{ScaleBlock, Spectral, pair_indices};
 
 /// Ψ's stretch-space description from ∂Ψ/∂σ (`grad`) and ∂²Ψ/∂σ² (`hess`,
@@ -14,12 +14,32 @@ use crate::spectral::{ScaleBlock, Spectral, pair_indices};
 /// (σ_i, σ_j) ↦ (−σ_j, −σ_i) (see [`crate::divided`]). An exactly diagonal
 /// `hess` becomes [`ScaleBlock::Diagonal`]. `psi = +∞` yields
 /// [`Spectral::infinite`]. D must be 2 or 3 (checked at compile time).
+/// [`spectral_from_stretch_with`] takes a [`TwistRule`] per pair instead.
 pub fn spectral_from_stretch<const D: usize>(
     sigma: &[f64; D],
     psi: f64,
     grad: [f64; D],
     hess: [[f64; D]; D],
     sign_symmetric: bool,
+) -> Spectral<D> {
+    let rule = if sign_symmetric {
+        TwistRule::SignSymmetric
+    } else {
+        TwistRule::Regular
+    };
+    spectral_from_stretch_with(sigma, psi, grad, hess, [rule; 3])
+}
+
+/// [`spectral_from_stretch`] with the twist of pair slot k resolved by
+/// `twist[k]` (what the compiler proved about σ_i + σ_j = 0). The quotient
+/// is never formed exactly on σ_i + σ_j = 0 unless the rule is a removable
+/// one (then the limit is used); otherwise the value there is +∞.
+pub fn spectral_from_stretch_with<const D: usize>(
+    sigma: &[f64; D],
+    psi: f64,
+    grad: [f64; D],
+    hess: [[f64; D]; D],
+    twist_rules: [TwistRule; 3],
 ) -> Spectral<D> {
     const {
         assert!(
@@ -47,7 +67,16 @@ pub fn spectral_from_stretch<const D: usize>(
         let (si, sj, gi, gj) = (sigma[i], sigma[j], grad[i], grad[j]);
         let (aii, ajj, aij) = (a[i][i], a[j][j], a[i][j]);
         flip[k] = flip_value(si, sj, gi, gj, aii, ajj, aij);
-        twist[k] = twist_value(si, sj, gi, gj, aii, ajj, aij, sign_symmetric);
+        let direct = || {
+            let s = si + sj;
+            if s == 0.0 {
+                f64::INFINITY
+            } else {
+                (gi + gj) / s
+            }
+        };
+        let sym_limit = || 0.5 * (aii + ajj) + aij;
+        twist[k] = twist_by_rule(si, sj, sym_limit, direct, twist_rules[k]);
     }
     let scale = if diagonal {
         ScaleBlock::Diagonal(std::array::from_fn(|i| a[i][i]))
