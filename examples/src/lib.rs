@@ -31,7 +31,7 @@ use ecc_runtime::Energy;
 use ecc_scene::energy::apply_params;
 use ecc_scene::spec::{BoxSelect, HandleSpec, KeySpec};
 use ecc_scene::{
-    EnergyError, EnergyRequest, EnergySource, Progress, RunOptions, RunReport, SceneError,
+    EnergyError, EnergyRequest, EnergySource, FrameLines, RunOptions, RunReport, SceneError,
     SceneFile, Silent, run_scene,
 };
 
@@ -49,7 +49,7 @@ pub enum Size {
 pub enum Output {
     /// Nothing is written (tests).
     Nowhere,
-    /// Frames, pictures and `summary.json` in this folder, with a progress bar.
+    /// Frames, pictures and `summary.json` in this folder, a progress line per frame on stderr.
     Folder(PathBuf),
 }
 
@@ -123,7 +123,7 @@ pub fn run(file: &SceneFile, out: &Output) -> Result<RunReport, SceneError> {
                 out_dir: Some(dir.clone()),
                 ..Default::default()
             };
-            run_scene(file, &GeneratedEnergies, &opts, &mut Progress::new(false))
+            run_scene(file, &GeneratedEnergies, &opts, &mut FrameLines::default())
         }
     }
 }

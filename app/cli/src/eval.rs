@@ -13,7 +13,6 @@ use nalgebra::SMatrix;
 
 use crate::error::CliError;
 use crate::input::{MatrixArg, parse_matrix, parse_params};
-use crate::json;
 use crate::output::print_stdout;
 use crate::point::{PointEval, evaluate};
 use crate::source::{Loaded, load};
@@ -96,11 +95,11 @@ where
         params: energy.params(),
         f: &f.rows,
     };
-    Ok(if as_json {
+    if as_json {
         to_json(&meta, &point)
     } else {
-        to_table(&meta, &point)
-    })
+        Ok(to_table(&meta, &point))
+    }
 }
 
 struct Meta<'a> {
@@ -112,46 +111,15 @@ struct Meta<'a> {
 }
 
 /// The documented JSON object (see [`EVAL_HELP`] and `CLI.md`).
-fn to_json(meta: &Meta, p: &PointEval) -> String {
-    let mut o = json::Object::default();
-    let params: Vec<String> = meta
-        .params
-        .iter()
-        .map(|(n, v)| format!("{}: {}", json::string(n), json::num(*v)))
-        .collect();
-    o.raw("energy", json::string(meta.energy))
-        .raw("file", json::string(meta.file))
-        .raw("dim", p.dim.to_string())
-        .raw("path", json::string(meta.path))
-        .raw("params", format!("{{{}}}", params.join(", ")))
-        .raw("F", json::matrix(meta.f))
-        .raw("sigma", json::array(&p.sigma));
-    if p.inside_domain() {
-        o.raw("domain", json::string("inside"))
-            .raw("finite", p.all_finite().to_string())
-            .raw("psi", json::num(p.psi))
-            .raw("gradient", json::array(&p.gradient))
-            .raw("hessian", json::matrix(&p.hessian))
-            .raw("hessian_projected", json::matrix(&p.hessian_projected))
-            .raw("eigenvalues", json::array(&p.eigenvalues));
-    } else {
-        o.raw("domain", json::string("outside"))
-            .raw("finite", "false".into())
-            .raw(
-                "error",
-                json::string("psi = +inf: F is outside the energy's domain (e.g. det F <= 0 for a barrier energy) or psi overflows"),
-            );
-        for key in [
-            "psi",
-            "gradient",
-            "hessian",
-            "hessian_projected",
-            "eigenvalues",
-        ] {
-            o.raw(key, "null".into());
-        }
-    }
-    o.render()
+fn to_json(meta: &Meta, p: &PointEval) -> Result<String, CliError> {
+    let meta = crate::eval_json::EvalMeta {
+        energy: meta.energy,
+        file: meta.file,
+        path: meta.path,
+        params: &meta.params,
+        f: meta.f,
+    };
+    crate::eval_json::render(&meta, p).map_err(|e| CliError::Stdout(e.to_string()))
 }
 
 fn fmt_num(x: f64) -> String {

@@ -8,10 +8,11 @@ mod demo;
 mod emit;
 mod error;
 mod eval;
+mod eval_json;
 mod input;
-mod json;
 mod output;
 mod point;
+mod progress;
 mod sim;
 mod source;
 
@@ -24,7 +25,10 @@ fn run(cli: &Cli) -> Result<(), CliError> {
     match &cli.command {
         Some(Command::Eval(args)) => eval::run(args),
         Some(Command::Check(args)) => check::run(args),
-        Some(Command::Sim(args)) => sim::run(args),
+        Some(Command::Sim(args)) => match &args.scene {
+            Some(path) => sim::run(path, args),
+            None => demo::run_demo(args),
+        },
         Some(Command::Demo(args)) => demo::run(args),
         None => emit::run(&cli.emit),
     }

@@ -15,12 +15,12 @@ use ecc_interp::{LoadError, load_psi};
 use ecc_runtime::Energy;
 use ecc_scene::energy::apply_params;
 use ecc_scene::{
-    EnergyError, EnergyRequest, EnergySource, Progress, RunOptions, SceneError, SceneFile,
-    run_scene,
+    EnergyError, EnergyRequest, EnergySource, RunOptions, SceneError, SceneFile, run_scene,
 };
 
 use crate::error::CliError;
 use crate::output::print_stdout;
+use crate::progress::Progress;
 
 /// `ecc sim` arguments.
 #[derive(Args, Debug, Clone, Default)]
@@ -160,10 +160,7 @@ pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// `ecc sim`.
-pub fn run(args: &SimArgs) -> Result<(), CliError> {
-    match &args.scene {
-        Some(path) => run_file(SceneFile::read(path).map_err(scene_error)?, args),
-        None => crate::demo::run_demo(args),
-    }
+/// `ecc sim SCENE.toml` (without a scene, `main` runs the demo instead).
+pub fn run(path: &std::path::Path, args: &SimArgs) -> Result<(), CliError> {
+    run_file(SceneFile::read(path).map_err(scene_error)?, args)
 }

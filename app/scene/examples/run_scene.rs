@@ -2,7 +2,7 @@
 //! `cargo run -p ecc-scene --example run_scene -- scenes/demo.toml [OUT]`.
 //! The `ecc sim` command does the same with every built-in and `.psi` energy.
 
-use ecc_scene::{Progress, RunOptions, RuntimeEnergies, SceneFile, run_scene};
+use ecc_scene::{FrameLines, RunOptions, RuntimeEnergies, SceneFile, run_scene};
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -15,7 +15,7 @@ fn main() {
         ..Default::default()
     };
     let result = SceneFile::read(&path)
-        .and_then(|f| run_scene(&f, &RuntimeEnergies, &opts, &mut Progress::new(false)));
+        .and_then(|f| run_scene(&f, &RuntimeEnergies, &opts, &mut FrameLines::default()));
     match result {
         Ok(r) => {
             print!("{}", r.summary.stats_table());

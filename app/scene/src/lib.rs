@@ -112,6 +112,6 @@ pub use body::Body;
 pub use counters::{Counter, CounterValues, Counters};
 pub use energy::{EnergyError, EnergyRequest, EnergySource, RuntimeEnergies};
 pub use error::{Location, SceneError};
-pub use sim::{FinalState, Observer, Progress, RunOptions, RunReport, Silent, run_scene};
+pub use sim::{FinalState, FrameLines, Observer, RunOptions, RunReport, Silent, run_scene};
 pub use spec::{Scene, SceneFile};
 pub use summary::Summary;

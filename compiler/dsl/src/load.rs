@@ -58,15 +58,21 @@ pub fn load_file(path: impl AsRef<Path>) -> Result<Source, LoadError> {
 pub fn load_text(text: impl Into<String>, file_name: &str) -> Result<Source, LoadError> {
     let text = text.into();
     let name = energy_name(file_name);
-    let module = crate::compile(&text, &name).map_err(|d| LoadError::Syntax {
-        path: file_name.to_string(),
-        rendered: d.render(file_name, &text),
-    })?;
+    let module = compile_text(&text, file_name, &name)?;
     Ok(Source {
         shown: file_name.to_string(),
         name,
         text,
         module,
+    })
+}
+
+/// Compile `text` as the energy `name`, every diagnostic rendered against
+/// `file_name`.
+pub fn compile_text(text: &str, file_name: &str, name: &str) -> Result<Module, LoadError> {
+    crate::compile(text, name).map_err(|d| LoadError::Syntax {
+        path: file_name.to_string(),
+        rendered: d.render(file_name, text),
     })
 }
 

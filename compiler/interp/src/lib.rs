@@ -39,6 +39,5 @@ pub use energy::InterpEnergy;
 pub use error::{BuildError, LoadError};
 pub use load::{
     compile_module, energy_from_module, energy_name, load_psi, load_source, param_values,
-    read_source,
 };
 pub use tape::Tape;

@@ -16,47 +16,46 @@ pub fn load_source<const D: usize>(
     file_name: &str,
     params: &[(String, f64)],
 ) -> Result<InterpEnergy<D>, LoadError> {
-    let name = energy_name(file_name);
-    let module = compile_module(source, file_name, &name)?;
-    energy_from_module(&module, file_name, params)
+    let loaded = ecc_dsl::load_text(source, file_name)?;
+    energy_from_module(&loaded.module, file_name, params)
 }
 
-/// Read and compile the `.psi` file at `path` for dimension `D` (see
-/// [`load_source`]); the energy is named after the file stem.
+/// Read and compile the `.psi` file at `path` for dimension `D`
+/// ([`ecc_dsl::load_file`], then [`energy_from_module`]); the energy is
+/// named after the file stem.
 pub fn load_psi<const D: usize>(
     path: impl AsRef<Path>,
     params: &[(String, f64)],
 ) -> Result<Box<dyn Energy<D>>, LoadError> {
-    let path = path.as_ref();
-    let shown = path.display().to_string();
-    let source = read_source(path)?;
-    Ok(Box::new(load_source::<D>(&source, &shown, params)?))
-}
-
-/// Read a `.psi` file as UTF-8 text.
-pub fn read_source(path: &Path) -> Result<String, LoadError> {
-    std::fs::read_to_string(path).map_err(|e| LoadError::Io {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    })
+    let loaded = ecc_dsl::load_file(path)?;
+    Ok(Box::new(energy_from_module::<D>(
+        &loaded.module,
+        &loaded.shown,
+        params,
+    )?))
 }
 
 /// The energy name for a file: its stem (`energies/psi/snh.psi` → `snh`).
-pub fn energy_name(file_name: &str) -> String {
-    Path::new(file_name)
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .filter(|s| !s.is_empty())
-        .unwrap_or("energy")
-        .to_string()
+pub use ecc_dsl::energy_name;
+
+/// Compile source text as the energy `name` with every diagnostic rendered
+/// against `file_name` ([`ecc_dsl::load::compile_text`]).
+pub fn compile_module(source: &str, file_name: &str, name: &str) -> Result<Module, LoadError> {
+    Ok(ecc_dsl::load::compile_text(source, file_name, name)?)
 }
 
-/// Compile source text with every diagnostic rendered against `file_name`.
-pub fn compile_module(source: &str, file_name: &str, name: &str) -> Result<Module, LoadError> {
-    ecc_dsl::compile(source, name).map_err(|d| LoadError::Syntax {
-        path: file_name.to_string(),
-        rendered: d.render(file_name, source),
-    })
+/// The loader's errors keep their shape in [`LoadError`] (the OS message of
+/// an unreadable file, the rendered diagnostics).
+impl From<ecc_dsl::LoadError> for LoadError {
+    fn from(e: ecc_dsl::LoadError) -> Self {
+        match e {
+            ecc_dsl::LoadError::Io { path, source } => LoadError::Io {
+                path,
+                message: source.to_string(),
+            },
+            ecc_dsl::LoadError::Syntax { path, rendered } => LoadError::Syntax { path, rendered },
+        }
+    }
 }
 
 /// Parameter values for `module`: its defaults with `overrides` applied.

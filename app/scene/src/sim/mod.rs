@@ -8,5 +8,5 @@ mod param;
 mod run;
 
 pub use engine::Engine;
-pub use observer::{Observer, Progress, Silent};
+pub use observer::{FrameLines, Observer, Silent};
 pub use run::{FinalState, RunOptions, RunReport, output_folder, run_scene};

@@ -1,10 +1,9 @@
 //! Progress reporting: an [`Observer`] sees frames and Newton iterations.
-//! [`Progress`] draws an indicatif bar on stderr (frames, plus the current
-//! Newton iteration and gradient norm); it draws nothing when stderr is not
-//! a terminal or when asked to be quiet.
+//! The scene only reports; drawing is the caller's business (the `ecc` CLI
+//! draws a progress bar). [`Silent`] ignores everything and [`FrameLines`]
+//! prints one plain line per frame on stderr.
 
 use ecc_fem::IterationRecord;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::summary::FrameStats;
 
@@ -28,61 +27,28 @@ pub struct Silent;
 
 impl Observer for Silent {}
 
-/// An indicatif progress bar on stderr.
-pub struct Progress {
-    bar: ProgressBar,
-    iterations: usize,
-    quiet: bool,
+/// One plain line per finished frame on stderr (`name: frame 3/24, 5 Newton
+/// iterations, |∇E|∞ 1.2e-7`), for examples and tools without a terminal UI.
+#[derive(Clone, Debug, Default)]
+pub struct FrameLines {
+    name: String,
+    frames: usize,
 }
 
-impl Progress {
-    /// A bar (hidden when `quiet` or when stderr is not a terminal).
-    pub fn new(quiet: bool) -> Self {
-        // hidden until the frame count is known (see `start`)
-        let bar = ProgressBar::with_draw_target(Some(0), ProgressDrawTarget::hidden());
-        let style = ProgressStyle::with_template(
-            "{prefix:.bold} [{bar:30.cyan/blue}] frame {pos}/{len} {msg} ({elapsed})",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> ");
-        bar.set_style(style);
-        Progress {
-            bar,
-            iterations: 0,
-            quiet,
-        }
-    }
-}
-
-impl Observer for Progress {
+impl Observer for FrameLines {
     fn start(&mut self, name: &str, frames: usize) {
-        self.bar.set_prefix(name.to_string());
-        self.bar.set_length(frames as u64);
-        self.bar.set_position(0);
-        if !self.quiet {
-            self.bar.set_draw_target(ProgressDrawTarget::stderr());
-        }
-    }
-
-    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) {
-        self.iterations += 1;
-        self.bar.set_message(format!(
-            "| newton {} (total {}) |∇E|∞ {:.2e}",
-            rec.iter + 1,
-            self.iterations,
-            rec.grad_inf
-        ));
+        self.name = name.to_string();
+        self.frames = frames;
     }
 
     fn frame_done(&mut self, stats: &FrameStats) {
-        self.bar.set_position(stats.frame as u64);
+        eprintln!(
+            "{}: frame {}/{}, {} Newton iterations, |∇E|∞ {:.2e}",
+            self.name, stats.frame, self.frames, stats.iterations, stats.grad_inf
+        );
     }
 
     fn note(&mut self, msg: &str) {
-        self.bar.set_message(format!("| {msg}"));
-    }
-
-    fn finish(&mut self) {
-        self.bar.finish_and_clear();
+        eprintln!("{}: {msg}", self.name);
     }
 }
