@@ -184,12 +184,22 @@ impl Converter {
                 RatFun::poly(p)
             }
             Node::Add(c) => {
-                let mut acc = RatFun::zero();
-                for x in c {
-                    let Some(r) = child(x) else { return Ok(None) };
-                    acc = acc.add(&r)?;
+                let kids: Option<Vec<&RatFun>> = c
+                    .iter()
+                    .map(|x| self.memo.get(x).and_then(Option::as_ref))
+                    .collect();
+                match kids {
+                    Some(kids) => RatFun::sum(&kids)?,
+                    // Fold up to the undefined term, charging what it charged.
+                    None => {
+                        let mut acc = RatFun::zero();
+                        for x in c {
+                            let Some(r) = child(x) else { return Ok(None) };
+                            acc = acc.add(&r)?;
+                        }
+                        acc
+                    }
                 }
-                acc
             }
             Node::Mul(c) => {
                 let mut acc = RatFun::one();

@@ -66,6 +66,11 @@ pub struct Poly {
     terms: BTreeMap<Mono, BigRational>,
 }
 
+/// Size of a coefficient in bits (numerator + denominator).
+fn coeff_bits(c: &BigRational) -> u64 {
+    c.numer().bits() + c.denom().bits()
+}
+
 fn trim(mut m: Mono) -> Mono {
     while m.last() == Some(&0) {
         m.pop();
@@ -208,6 +213,46 @@ impl Poly {
         r.check()
     }
 
+    /// `self += other · x^shift`, in place (no copy of `self`: summing n
+    /// polynomials this way is linear in their total size, where folding
+    /// [`Poly::add`] copies the growing sum every time).
+    ///
+    /// Charged and bounded exactly like `self.add(&other.mul_mono(shift))`:
+    /// `other.len()` operations, then [`TooBig`] when the sum has more than
+    /// [`MAX_TERMS`] terms or a coefficient it changed exceeds
+    /// [`MAX_COEFF_BITS`] (the others were checked when they were made).
+    /// After an error `self` is partly updated and must be discarded.
+    pub fn add_shifted(&mut self, other: &Poly, shift: &[u32]) -> Result<(), TooBig> {
+        charge(other.terms.len() as u64)?;
+        for (m, c) in &other.terms {
+            let key = if shift.is_empty() {
+                m.clone()
+            } else {
+                mono_mul(m, shift)
+            };
+            match self.terms.entry(key) {
+                std::collections::btree_map::Entry::Vacant(v) => {
+                    if coeff_bits(c) > MAX_COEFF_BITS {
+                        return Err(TooBig);
+                    }
+                    v.insert(c.clone());
+                }
+                std::collections::btree_map::Entry::Occupied(mut o) => {
+                    *o.get_mut() += c;
+                    if o.get().is_zero() {
+                        o.remove();
+                    } else if coeff_bits(o.get()) > MAX_COEFF_BITS {
+                        return Err(TooBig);
+                    }
+                }
+            }
+        }
+        if self.terms.len() > MAX_TERMS {
+            return Err(TooBig);
+        }
+        Ok(())
+    }
+
     /// `self - other`.
     pub fn sub(&self, other: &Poly) -> Result<Poly, TooBig> {
         self.add(&other.neg())
@@ -282,11 +327,7 @@ impl Poly {
 
     /// The largest coefficient size in bits (numerator + denominator).
     pub fn coeff_bits(&self) -> u64 {
-        self.terms
-            .values()
-            .map(|c| c.numer().bits() + c.denom().bits())
-            .max()
-            .unwrap_or(0)
+        self.terms.values().map(coeff_bits).max().unwrap_or(0)
     }
 
     fn check(self) -> Result<Poly, TooBig> {

@@ -161,6 +161,66 @@ impl RatFun {
         Ok(r)
     }
 
+    /// Σ `terms`: the same function, in the same form, as folding
+    /// [`RatFun::add`] from 0 left to right, but in one pass.
+    ///
+    /// When every denominator factor is a single variable (polynomials, or
+    /// powers of σ, parameters and atoms in the denominators — the usual
+    /// case), each numerator is lifted to the common denominator
+    /// D = Π x^(max exponent) by a monomial shift and accumulated in place:
+    /// linear in the total size, where the fold copies the growing sum at
+    /// every step (quadratic in the number of terms). The results agree:
+    /// once cancelled, a single-variable factor x keeps the exponent
+    /// max(0, −ord_x(f)) whatever common denominator the sum was formed over,
+    /// so the form N / Π x^e depends only on the function f. For polynomial
+    /// terms the budget charges and size checks are those of the fold too.
+    /// Other denominators (non-monomial factors) are folded as before.
+    pub fn sum(terms: &[&RatFun]) -> Result<RatFun, TooBig> {
+        let monomial_dens = terms
+            .iter()
+            .all(|t| t.den.iter().all(|(f, _)| f.len() == 1));
+        if !monomial_dens {
+            let mut acc = RatFun::zero();
+            for t in terms {
+                acc = acc.add(t)?;
+            }
+            return Ok(acc);
+        }
+        // The common denominator: per variable, the largest exponent.
+        let mut common: Vec<u32> = Vec::new();
+        let var_of = |f: &Poly| f.leading().map_or(0, |(m, _)| m.len() - 1);
+        for t in terms {
+            for (f, e) in &t.den {
+                let v = var_of(f);
+                if common.len() <= v {
+                    common.resize(v + 1, 0);
+                }
+                common[v] = common[v].max(*e);
+            }
+        }
+        let mut num = Poly::zero();
+        for t in terms {
+            // num += t.num · D / t.den.
+            let mut shift = common.clone();
+            for (f, e) in &t.den {
+                shift[var_of(f)] -= e;
+            }
+            while shift.last() == Some(&0) {
+                shift.pop();
+            }
+            num.add_shifted(&t.num, &shift)?;
+        }
+        let den = common
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| **e > 0)
+            .map(|(v, e)| (Poly::var(v), *e))
+            .collect();
+        let mut r = RatFun { num, den };
+        r.cancel()?;
+        Ok(r)
+    }
+
     /// `self - other`.
     pub fn sub(&self, other: &RatFun) -> Result<RatFun, TooBig> {
         self.add(&other.neg())
@@ -273,5 +333,66 @@ impl RatFun {
     /// 0.
     pub fn zero() -> Self {
         RatFun::constant(BigRational::zero())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn int(n: i64) -> BigRational {
+        BigRational::from_integer(n.into())
+    }
+
+    /// c · x0^a x1^b + d · x2 (+ 1) over the given denominator factors.
+    fn term(c: i64, a: u32, b: u32, d: i64, den: Vec<(Poly, u32)>) -> RatFun {
+        let num = Poly::monomial(int(c), &[a, b])
+            .add(&Poly::monomial(int(d), &[0, 0, 1]))
+            .and_then(|p| p.add(&Poly::one()))
+            .unwrap_or_default();
+        RatFun::from_parts(num, den).unwrap_or_else(|_| RatFun::zero())
+    }
+
+    fn fold(terms: &[&RatFun]) -> RatFun {
+        let mut acc = RatFun::zero();
+        for t in terms {
+            acc = acc.add(t).unwrap_or_else(|_| RatFun::zero());
+        }
+        acc
+    }
+
+    #[test]
+    fn sum_is_the_fold_of_add() {
+        let (x0, x1) = (Poly::var(0), Poly::var(1));
+        let x0_plus_x1 = x0.add(&x1).unwrap_or_default();
+        let mut terms: Vec<RatFun> = Vec::new();
+        for k in 0..40i64 {
+            let a = (k % 4) as u32;
+            let b = (k % 3) as u32;
+            let den = match k % 5 {
+                0 => vec![],
+                1 => vec![(x0.clone(), 1 + (k % 3) as u32)],
+                2 => vec![(x1.clone(), 2), (x0.clone(), 1)],
+                3 => vec![(Poly::var(2), 1)],
+                _ => vec![(x0.scale(&int(3)), 2)],
+            };
+            terms.push(term(k - 20, a, b, 7 - k, den));
+        }
+        // Terms that cancel exactly, and one equal to minus the rest.
+        terms.push(term(1, 1, 0, 0, vec![(x0.clone(), 3)]).neg());
+        let refs: Vec<&RatFun> = terms.iter().collect();
+        for n in [0, 1, 2, 5, 17, refs.len()] {
+            assert_eq!(RatFun::sum(&refs[..n]), Ok(fold(&refs[..n])), "{n}");
+        }
+        let total = fold(&refs);
+        let mut with_neg = refs.clone();
+        let neg = total.neg();
+        with_neg.push(&neg);
+        assert!(RatFun::sum(&with_neg).is_ok_and(|r| r.is_zero() && r.den.is_empty()));
+        // A non-monomial denominator takes the fold.
+        let poly_den = term(2, 1, 1, 1, vec![(x0_plus_x1, 1)]);
+        let mut mixed = refs.clone();
+        mixed.insert(3, &poly_den);
+        assert_eq!(RatFun::sum(&mixed), Ok(fold(&mixed)));
     }
 }
