@@ -47,6 +47,7 @@
 //! targeted `#[allow]`s cover long literals and long functions).
 
 pub mod build;
+pub mod cpp;
 mod energy;
 mod error;
 mod options;
@@ -55,6 +56,7 @@ mod render;
 mod report;
 mod summary;
 
+pub use cpp::{CppOptions, CppRuntime, generate_cpp};
 pub use error::CodegenError;
 pub use options::{GenOptions, Visibility, type_name_from_stem};
 pub use report::report_markdown;

@@ -498,6 +498,19 @@ impl<'g> Plan<'g> {
         out
     }
 
+    /// The bindings of `region` as (name, defining expression), in the order
+    /// of [`Plan::lets`] (for back ends other than Rust tokens, e.g. C++).
+    pub(crate) fn bindings(&self, region: Region) -> Vec<(String, Ex)> {
+        self.order
+            .iter()
+            .filter(|id| self.place.get(id).is_some_and(|p| p.contains(region)))
+            .map(|id| {
+                let name = self.final_name(&self.names[id]).to_string();
+                (name, self.defs[id].clone().renamed(&self.rename))
+            })
+            .collect()
+    }
+
     /// How generated code refers to the value of `id` (a name, a literal,
     /// or the inlined expression of an unbound node).
     pub(crate) fn value(&self, id: Id) -> TokenStream {
