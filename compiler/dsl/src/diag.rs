@@ -147,6 +147,22 @@ pub enum Error {
         /// Its value.
         value: String,
     },
+    /// A number literal that does not fit an f64: it overflows to ±∞, or it
+    /// is nonzero and below the normal range (it would round to 0, or to a
+    /// subnormal that keeps fewer than 53 bits).
+    #[error("number `{text}` does not fit an f64 ({})", if *.overflow {
+        "too large: the largest is 1.7976931348623157e308"
+    } else {
+        "too small: nonzero magnitudes must be at least 2.2250738585072014e-308"
+    })]
+    NumberNotF64 {
+        /// The literal.
+        span: Span,
+        /// Its text.
+        text: String,
+        /// Too large (±∞) rather than too small (0 or subnormal).
+        overflow: bool,
+    },
     /// `dim` with something other than 2 or 3.
     #[error("dimension must be 2 or 3, found `{found}`")]
     BadDim {
@@ -184,6 +200,7 @@ impl Error {
             | Error::NotIsotropic { span, .. }
             | Error::ParamNotConstant { span, .. }
             | Error::ParamNotFinite { span, .. }
+            | Error::NumberNotF64 { span, .. }
             | Error::BadDim { span, .. }
             | Error::DimMismatch { span, .. } => *span,
         }
@@ -256,6 +273,10 @@ impl Error {
                 vec!["note: parameter defaults may only use numbers, + - * / ^ and sqrt, log, exp, pow".into()],
             ),
             Error::ParamNotFinite { span, .. } => (vec![primary(*span, "not a finite number")], vec![]),
+            Error::NumberNotF64 { span, overflow, .. } => (
+                vec![primary(*span, if *overflow { "rounds to +∞ in f64" } else { "rounds to 0 or to a subnormal in f64" })],
+                vec!["help: rescale the energy or its parameters so that every number is within the f64 range".into()],
+            ),
             Error::BadDim { span, .. } => (vec![primary(*span, "expected 2 or 3")], vec![]),
             Error::DimMismatch { span, .. } => (vec![primary(*span, "dimension declared here")], vec![]),
         };

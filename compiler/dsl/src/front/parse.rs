@@ -5,6 +5,8 @@
 //! starting with an operator, continues the statement). Each statement is
 //! parsed on its own, so one syntax error never hides the others.
 
+use num_rational::BigRational;
+use num_traits::Zero;
 use pest::Parser;
 use pest::iterators::Pair;
 
@@ -418,7 +420,7 @@ impl Builder {
             }
             Rule::ident => Ok(Expr::Ident(p.as_str().to_string(), span)),
             Rule::number => match rat::parse_decimal(p.as_str()) {
-                Some(r) => Ok(Expr::Num(r, span)),
+                Some(r) => fits_f64(&r, p.as_str(), span).map(|()| Expr::Num(r, span)),
                 None => Err(Error::Syntax {
                     span,
                     message:
@@ -432,4 +434,21 @@ impl Builder {
             }),
         }
     }
+}
+
+/// A literal must be exactly representable to f64 precision where the
+/// generated code will evaluate it: not ±∞ after rounding, and, if nonzero,
+/// at least the smallest normal f64 (below it the value rounds to 0 or to a
+/// subnormal with fewer than 53 significant bits, silently changing Ψ).
+fn fits_f64(r: &BigRational, text: &str, span: Span) -> Result<(), Error> {
+    let v = rat::to_f64(r);
+    let overflow = !v.is_finite();
+    if overflow || (!r.is_zero() && v.abs() < f64::MIN_POSITIVE) {
+        return Err(Error::NumberNotF64 {
+            span,
+            text: text.to_string(),
+            overflow,
+        });
+    }
+    Ok(())
 }
