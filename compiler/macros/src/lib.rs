@@ -50,6 +50,12 @@
 //! at that identifier, a non-isotropic stretch energy at its `psi`
 //! expression. The macro never panics.
 //!
+//! Comments are Rust's `//` and `/* */` (Rust removes them before the macro
+//! sees its input). A `#` — a comment in `.psi` files — is an error at the
+//! `#` here: the input has no lines, so a `.psi` comment would silently drop
+//! everything after it. A literal that does not fit an f64 (`1e400`) is an
+//! error at the literal, as in `.psi` files.
+//!
 //! ## Why not `energy!<…>`?
 //!
 //! A macro invocation is `path!` followed by a delimited token tree — `( )`,
@@ -81,6 +87,9 @@ fn expand(input: TokenStream) -> TokenStream {
         Err(e) => return e.to_compile_error(),
     };
     let text = Text::from_tokens(body);
+    if let Some(e) = text.hash_errors() {
+        return e.to_compile_error();
+    }
     let (type_name, energy_name) = match &header {
         Some(h) => (h.name.to_string(), item::snake(&h.name.to_string())),
         None => ("GeneratedEnergy".to_string(), "energy".to_string()),

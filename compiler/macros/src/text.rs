@@ -17,6 +17,11 @@ use proc_macro2::{Delimiter, Spacing, Span, TokenStream, TokenTree};
 pub(crate) struct Text {
     pub text: String,
     spans: Vec<(Range<usize>, Span)>,
+    /// Every `#` token, and whether it starts a doc comment (`#[doc = …]`,
+    /// i.e. `///`). In the energy language `#` starts a comment to the end
+    /// of the line, which would silently drop the rest of the macro input
+    /// (it has no lines): these are errors, see [`Text::hash_errors`].
+    hashes: Vec<(Span, bool)>,
     /// The previous token's text ("" at the start).
     prev: String,
     /// The previous token was a unary sign or a `Joint` punctuation.
@@ -37,6 +42,7 @@ impl Text {
         let mut t = Text {
             text: String::new(),
             spans: Vec::new(),
+            hashes: Vec::new(),
             prev: String::new(),
             glue_next: false,
         };
@@ -65,7 +71,16 @@ impl Text {
     }
 
     fn push_stream(&mut self, tokens: TokenStream) {
-        for tt in tokens {
+        let mut tokens = tokens.into_iter().peekable();
+        while let Some(tt) = tokens.next() {
+            if let TokenTree::Punct(p) = &tt
+                && p.as_char() == '#'
+            {
+                let doc = matches!(tokens.peek(), Some(TokenTree::Group(g))
+                    if g.delimiter() == Delimiter::Bracket
+                        && g.stream().to_string().starts_with("doc"));
+                self.hashes.push((p.span(), doc));
+            }
             match tt {
                 TokenTree::Ident(i) => self.push(&i.to_string(), i.span(), false),
                 TokenTree::Literal(l) => self.push(&l.to_string(), l.span(), false),
@@ -90,6 +105,27 @@ impl Text {
                 }
             }
         }
+    }
+
+    /// A `compile_error!` at each `#`: inside Rust tokens it is not a
+    /// comment (the energy language would drop everything after it).
+    pub(crate) fn hash_errors(&self) -> Option<syn::Error> {
+        self.hashes
+            .iter()
+            .map(|&(span, doc)| {
+                let m = if doc {
+                    "doc comments (`///`, `//!`) cannot be used inside `energy!` \
+                     statements; use `//` comments (Rust removes them)"
+                } else {
+                    "`#` is not a comment inside `energy!` (the macro input is Rust \
+                     tokens); use `//` comments, which Rust removes"
+                };
+                syn::Error::new(span, m)
+            })
+            .reduce(|mut all, e| {
+                all.combine(e);
+                all
+            })
     }
 
     /// The spans of the first and last tokens overlapping `range` (the
@@ -135,6 +171,26 @@ mod tests {
             Text::from_tokens(ts).text,
             "mu/2*(IC - d) - -mu*log(IC + 1)"
         );
+    }
+
+    #[test]
+    fn every_hash_is_an_error() {
+        let ts: TokenStream = "I2 # note\n - 2*I1 + d".parse().unwrap_or_default();
+        let t = Text::from_tokens(ts);
+        let e = t.hash_errors().map(|e| e.to_string()).unwrap_or_default();
+        assert!(e.contains("`#` is not a comment"), "{e}");
+        let ts: TokenStream = "I2 - 2*I1 + d".parse().unwrap_or_default();
+        assert!(Text::from_tokens(ts).hash_errors().is_none());
+        let ts: TokenStream = "param k = 1; /// doc\n psi = k*I2"
+            .parse()
+            .unwrap_or_default();
+        let e = Text::from_tokens(ts).hash_errors().map(|e| e.to_string());
+        assert!(e.unwrap_or_default().contains("doc comments"));
+        let ts: TokenStream = "I2 # a\n # b\n + d".parse().unwrap_or_default();
+        let n = Text::from_tokens(ts)
+            .hash_errors()
+            .map_or(0, |e| e.into_iter().count());
+        assert_eq!(n, 2);
     }
 
     #[test]
