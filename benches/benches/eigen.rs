@@ -19,7 +19,7 @@
 use criterion::{BenchmarkId, Criterion};
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
 use ecc_runtime::reference::project_psd_numeric;
-use ecc_runtime::{Energy, Filter, TetRest, hessian_f3, signed_svd3, tet_eval, tet_f};
+use ecc_runtime::{Energy, Filter, Rest, element_eval, element_f, hessian_f, signed_svd3};
 use nalgebra::{Matrix3, SMatrix};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -29,7 +29,7 @@ use std::time::{Duration, Instant};
 const BATCH: usize = 256;
 
 struct Element {
-    rest: TetRest,
+    rest: Rest<3>,
     x: [[f64; 3]; 4],
     /// Dense ∂vec(F)/∂x, for the numeric 9×9 baseline's chain rule.
     b: SMatrix<f64, 9, 12>,
@@ -41,8 +41,10 @@ fn batch() -> Vec<Element> {
     while out.len() < BATCH {
         let p: [[f64; 3]; 4] =
             std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-1.0..1.0)));
-        let Ok(rest) = TetRest::new(p) else { continue };
-        if rest.volume < 0.02 {
+        let Ok(rest) = Rest::<3>::new(p) else {
+            continue;
+        };
+        if rest.measure < 0.02 {
             continue;
         }
         let mut f = Matrix3::identity() + Matrix3::from_fn(|_, _| r.gen_range(-0.5..0.5));
@@ -53,11 +55,11 @@ fn batch() -> Vec<Element> {
             let y = f * nalgebra::Vector3::from(p[n]);
             [y[0], y[1], y[2]]
         });
-        let f0 = tet_f(&rest, &[[0.0; 3]; 4]);
+        let f0 = element_f(&rest, &[[0.0; 3]; 4]);
         let b = SMatrix::from_fn(|i, k| {
             let mut e = [[0.0; 3]; 4];
             e[k / 3][k % 3] = 1.0;
-            let fk = tet_f(&rest, &e) - f0;
+            let fk = element_f(&rest, &e) - f0;
             fk[(i % 3, i / 3)]
         });
         out.push(Element { rest, x, b });
@@ -66,20 +68,20 @@ fn batch() -> Vec<Element> {
 }
 
 fn analytic<E: Energy<3>>(e: &E, el: &Element) -> SMatrix<f64, 12, 12> {
-    tet_eval(e, &el.rest, &el.x, Filter::Clamp, true).hess
+    element_eval(e, &el.rest, &el.x, Filter::Clamp, true).hess
 }
 
 fn numeric12<E: Energy<3>>(e: &E, el: &Element) -> SMatrix<f64, 12, 12> {
-    let raw = tet_eval(e, &el.rest, &el.x, Filter::None, true);
+    let raw = element_eval(e, &el.rest, &el.x, Filter::None, true);
     project_psd_numeric(&raw.hess, Filter::Clamp)
 }
 
 fn numeric9<E: Energy<3>>(e: &E, el: &Element) -> SMatrix<f64, 12, 12> {
-    let f = tet_f(&el.rest, &el.x);
+    let f = element_f(&el.rest, &el.x);
     let svd = signed_svd3(&f);
     let s = e.spectral(&svd.sigma);
-    let h = project_psd_numeric(&hessian_f3(&svd, &s, Filter::None), Filter::Clamp);
-    el.b.transpose() * h * el.b * el.rest.volume
+    let h = project_psd_numeric(&hessian_f(&svd, &s, Filter::None), Filter::Clamp);
+    el.b.transpose() * h * el.b * el.rest.measure
 }
 
 /// Analytic = numeric9 (the same F-space projection) on every element;
@@ -95,7 +97,7 @@ fn sanity<E: Energy<3>>(e: &E, els: &[Element]) {
             "{}: analytic and numeric9 disagree by {d9:e}",
             e.name()
         );
-        let raw = tet_eval(e, &el.rest, &el.x, Filter::None, true).hess;
+        let raw = element_eval(e, &el.rest, &el.x, Filter::None, true).hess;
         if (a - raw).amax() <= 1e-12 * scale {
             let d12 = (a - numeric12(e, el)).amax() / scale;
             assert!(
@@ -274,7 +276,7 @@ fn ratio_table(els: &[Element], fs: &[Matrix3<f64>]) {
 
 fn main() {
     let els = batch();
-    let fs: Vec<Matrix3<f64>> = els.iter().map(|el| tet_f(&el.rest, &el.x)).collect();
+    let fs: Vec<Matrix3<f64>> = els.iter().map(|el| element_f(&el.rest, &el.x)).collect();
     let (arap, sd, snh) = (Arap, SymmetricDirichlet, StableNeoHookean::new(1.0, 10.0));
     sanity(&arap, &els);
     sanity(&sd, &els);

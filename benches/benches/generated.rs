@@ -13,7 +13,7 @@
 //! Run: `cargo bench -p ecc-benches --bench generated`.
 
 use criterion::{BenchmarkId, Criterion};
-use ecc_runtime::{Energy, Filter, TetRest, tet_eval, tet_f};
+use ecc_runtime::{Energy, Filter, Rest, element_eval, element_f};
 use nalgebra::Matrix3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -23,7 +23,7 @@ use std::time::{Duration, Instant};
 const BATCH: usize = 256;
 
 struct Element {
-    rest: TetRest,
+    rest: Rest<3>,
     x: [[f64; 3]; 4],
     /// Signed singular values of F (for the spectral-only table).
     sigma: [f64; 3],
@@ -35,8 +35,10 @@ fn batch() -> Vec<Element> {
     while out.len() < BATCH {
         let p: [[f64; 3]; 4] =
             std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-1.0..1.0)));
-        let Ok(rest) = TetRest::new(p) else { continue };
-        if rest.volume < 0.02 {
+        let Ok(rest) = Rest::<3>::new(p) else {
+            continue;
+        };
+        if rest.measure < 0.02 {
             continue;
         }
         let mut f = Matrix3::identity() + Matrix3::from_fn(|_, _| r.gen_range(-0.5..0.5));
@@ -47,7 +49,7 @@ fn batch() -> Vec<Element> {
             let y = f * nalgebra::Vector3::from(p[n]);
             [y[0], y[1], y[2]]
         });
-        let sigma = ecc_runtime::signed_svd3(&tet_f(&rest, &x)).sigma;
+        let sigma = ecc_runtime::signed_svd3(&element_f(&rest, &x)).sigma;
         out.push(Element { rest, x, sigma });
     }
     out
@@ -55,7 +57,7 @@ fn batch() -> Vec<Element> {
 
 /// The kernel both sides run.
 fn kernel<E: Energy<3>>(e: &E, el: &Element) -> f64 {
-    let r = tet_eval(e, &el.rest, &el.x, Filter::Clamp, true);
+    let r = element_eval(e, &el.rest, &el.x, Filter::Clamp, true);
     r.psi + r.grad[0] + r.hess[(0, 0)]
 }
 

@@ -9,7 +9,7 @@
 //! Beyond "no panic" this checks one invariant: wherever Ψ is finite, the
 //! clamped Hessian the solver would use has no NaN.
 
-use ecc_runtime::{Energy, Filter, hessian_f2, hessian_f3, signed_svd2, signed_svd3};
+use ecc_runtime::{Energy, Filter, hessian_f, signed_svd2, signed_svd3};
 
 const SIGMA3: [[f64; 3]; 8] = [
     [1.0, 1.0, 1.0],
@@ -56,7 +56,7 @@ pub fn run(data: &[u8]) {
             let sp = e.spectral(&s);
             let _ = e.psi(&s);
             if sp.psi.is_finite() {
-                let h = hessian_f3(&mat3(s), &sp, Filter::Clamp);
+                let h = hessian_f(&mat3(s), &sp, Filter::Clamp);
                 assert!(
                     !h.iter().any(|x| x.is_nan()),
                     "NaN in the clamped Hessian at {s:?}: {src:?}"
@@ -69,7 +69,7 @@ pub fn run(data: &[u8]) {
             let sp = e.spectral(&s);
             let _ = e.psi(&s);
             if sp.psi.is_finite() {
-                let h = hessian_f2(&mat2(s), &sp, Filter::Clamp);
+                let h = hessian_f(&mat2(s), &sp, Filter::Clamp);
                 assert!(
                     !h.iter().any(|x| x.is_nan()),
                     "NaN in the clamped Hessian at {s:?}: {src:?}"

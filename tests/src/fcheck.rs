@@ -2,7 +2,7 @@
 //!
 //! At F = U diag(σ) Vᵀ the energy's [`Spectral`](ecc_runtime::Spectral) is
 //! lifted by the runtime to vec(∂Ψ/∂F), the raw Hessian ∂²Ψ/∂f², its
-//! analytic eigenpairs and the filtered Hessians. [`check3`]/[`check2`] test
+//! analytic eigenpairs and the filtered Hessians. [`check_f`] tests
 //!
 //! * Ψ from `psi` equals Ψ from `spectral` (and from `psi_i2_i3` when offered);
 //! * the gradient and the raw Hessian against central differences of Ψ(F)
@@ -17,12 +17,12 @@
 //! * every filtered Hessian: finite, exactly symmetric, PSD (down to the
 //!   filter's floor) and equal to the numeric projection of the raw Hessian.
 
-use ecc_runtime::reference::{fd_gradient_f, fd_hessian_f, project_psd_numeric};
+use ecc_runtime::reference::{fd_gradient_f, fd_hessian_f, project_psd_f};
 use ecc_runtime::{
-    Energy, Filter, Spectral, Svd, eigen_f2, eigen_f3, gradient_f2, gradient_f3, hessian_f2,
-    hessian_f3, signed_svd,
+    Dim, Energy, FMat, FVec, Filter, Space, Spectral, Svd, eigen_f, gradient_f, hessian_f,
+    signed_svd,
 };
-use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, SMatrix, SVector, SymmetricEigen};
+use nalgebra::{DMatrix, DVector, SMatrix, SymmetricEigen};
 
 /// Gradient vs central differences (which reach ≈1e-10; a wrong factor gives O(1)).
 pub const GRAD_TOL: f64 = 1e-7;
@@ -62,10 +62,6 @@ struct Point {
     vals: Vec<f64>,
     vecs: Vec<DVector<f64>>,
     filtered: Vec<(Filter, DMatrix<f64>, DMatrix<f64>)>,
-}
-
-fn dynm<const R: usize, const C: usize>(a: &SMatrix<f64, R, C>) -> DMatrix<f64> {
-    DMatrix::from_fn(R, C, |i, j| a[(i, j)])
 }
 
 /// Richardson-extrapolated second central differences of `psi` at `x`
@@ -121,85 +117,63 @@ fn psi_agrees(label: &str, a: f64, b: f64, what: &str) -> Result<(), String> {
     }
 }
 
-/// The runtime's F-space lift of a [`Spectral`] at one SVD, for one
-/// dimension (the runtime offers it per dimension: `gradient_f2`/`_f3`, …):
-/// a [`Point`] without the finite-difference parts.
-trait Lift<const D: usize> {
-    fn lift(&self, s: &Spectral<D>) -> Point;
+fn dynv<const D: usize>(v: &FVec<D>) -> DVector<f64>
+where
+    Space<D>: Dim<D>,
+{
+    DVector::from_fn(D * D, |i, _| v[i])
 }
 
-fn dynv<const N: usize>(v: &SVector<f64, N>) -> DVector<f64> {
-    DVector::from_column_slice(v.as_slice())
+fn dynf<const D: usize>(m: &FMat<D>) -> DMatrix<f64>
+where
+    Space<D>: Dim<D>,
+{
+    DMatrix::from_fn(D * D, D * D, |i, j| m[(i, j)])
 }
 
-macro_rules! lift {
-    ($d:literal, $gradient:ident, $hessian:ident, $eigen:ident) => {
-        impl Lift<$d> for Svd<$d> {
-            fn lift(&self, s: &Spectral<$d>) -> Point {
-                let h = $hessian(self, s, Filter::None);
-                let (vals, vecs) = $eigen(self, s);
-                Point {
-                    g: dynv(&$gradient(self, s)),
-                    g_fd: None,
-                    h: dynm(&h),
-                    h_fd: None,
-                    vals: vals.to_vec(),
-                    vecs: vecs.iter().map(dynv).collect(),
-                    filtered: FILTERS
-                        .iter()
-                        .map(|&fl| {
-                            (
-                                fl,
-                                dynm(&$hessian(self, s, fl)),
-                                dynm(&project_psd_numeric(&h, fl)),
-                            )
-                        })
-                        .collect(),
-                }
-            }
-        }
-    };
+/// The runtime's F-space lift of a [`Spectral`] at one SVD: a [`Point`]
+/// without the finite-difference parts.
+fn lift<const D: usize>(svd: &Svd<D>, s: &Spectral<D>) -> Point
+where
+    Space<D>: Dim<D>,
+{
+    let raw = hessian_f(svd, s, Filter::None);
+    let h = dynf::<D>(&raw);
+    let (vals, vecs) = eigen_f(svd, s);
+    Point {
+        g: dynv::<D>(&gradient_f(svd, s)),
+        g_fd: None,
+        vals: vals.as_ref().to_vec(),
+        vecs: vecs.as_ref().iter().map(dynv::<D>).collect(),
+        filtered: FILTERS
+            .iter()
+            .map(|&fl| {
+                (
+                    fl,
+                    dynf::<D>(&hessian_f(svd, s, fl)),
+                    dynf::<D>(&project_psd_f::<D>(&raw, fl)),
+                )
+            })
+            .collect(),
+        h,
+        h_fd: None,
+    }
 }
 
-lift!(2, gradient_f2, hessian_f2, eigen_f2);
-lift!(3, gradient_f3, hessian_f3, eigen_f3);
-
-/// Check a 3D energy at F (`fd`: also compare with central differences).
-/// `Ok(false)` when F is outside the energy's domain (Ψ = +∞).
-pub fn check3(
-    e: &dyn Energy<3>,
-    f: &Matrix3<f64>,
-    fd: bool,
-    label: &str,
-    worst: &mut Worst,
-) -> Result<bool, String> {
-    check_at(e, f, f.determinant(), fd, label, worst)
-}
-
-/// Check a 2D energy at F (see [`check3`]).
-pub fn check2(
-    e: &dyn Energy<2>,
-    f: &Matrix2<f64>,
-    fd: bool,
-    label: &str,
-    worst: &mut Worst,
-) -> Result<bool, String> {
-    check_at(e, f, f.determinant(), fd, label, worst)
-}
-
-/// [`check3`]/[`check2`] for `D`; `det` = det F.
-fn check_at<const D: usize>(
+/// Check an energy at F (`fd`: also compare with central differences), for
+/// d = 2 or 3. `Ok(false)` when F is outside the energy's domain (Ψ = +∞).
+pub fn check_f<const D: usize>(
     e: &dyn Energy<D>,
     f: &SMatrix<f64, D, D>,
-    det: f64,
     fd: bool,
     label: &str,
     worst: &mut Worst,
 ) -> Result<bool, String>
 where
-    Svd<D>: Lift<D>,
+    Space<D>: Dim<D>,
 {
     let svd = signed_svd(f);
+    let det = <Space<D> as Dim<D>>::det(f);
     let s = e.spectral(&svd.sigma);
     psi_agrees(label, e.psi(&svd.sigma), s.psi, "psi(σ)")?;
     if e.info().svd_free_psi {
@@ -217,8 +191,8 @@ where
     }
     let p = Point {
         g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f(e, f).as_slice())),
-        h_fd: fd.then(|| fd_hessian_f(e, f)),
-        ..svd.lift(&s)
+        h_fd: fd.then(|| dynf::<D>(&fd_hessian_f(e, f))),
+        ..lift(&svd, &s)
     };
     let smin = svd.sigma.iter().fold(f64::INFINITY, |m, x| m.min(x.abs()));
     check(&p, label, worst, &|| fixed_step_hessians(e, f, smin))?;

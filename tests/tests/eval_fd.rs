@@ -6,7 +6,7 @@
 
 use ecc_interp::InterpEnergy;
 use ecc_tests::cases::*;
-use ecc_tests::fcheck::{Worst, check2, check3};
+use ecc_tests::fcheck::{Worst, check_f};
 use ecc_tests::library::{library2, library3};
 
 fn interp<const D: usize>(name: &str, source: &str) -> InterpEnergy<D> {
@@ -42,7 +42,7 @@ fn interpreted_energies_at_hard_and_random_f_3d() {
                 let f = compose(u, &c.sigma, v);
                 let label = format!("{} 3D {} rot {k}", lib.name, c.name);
                 // Across a genuine pole differences are meaningless (see cases.rs).
-                match check3(&e, &f, !c.antipodal || sym, &label, &mut worst) {
+                match check_f(&e, &f, !c.antipodal || sym, &label, &mut worst) {
                     Ok(true) => inside += 1,
                     Ok(false) => {}
                     Err(msg) => failures.push(msg),
@@ -50,7 +50,7 @@ fn interpreted_energies_at_hard_and_random_f_3d() {
             }
         }
         for (k, f) in fs.iter().enumerate() {
-            match check3(
+            match check_f(
                 &e,
                 f,
                 true,
@@ -79,7 +79,7 @@ fn interpreted_energies_at_hard_and_random_f_2d() {
             for (k, (u, v)) in rots.iter().enumerate() {
                 let f = compose(u, &c.sigma, v);
                 let label = format!("{} 2D {} rot {k}", lib.name, c.name);
-                match check2(&e, &f, !c.antipodal || sym, &label, &mut worst) {
+                match check_f(&e, &f, !c.antipodal || sym, &label, &mut worst) {
                     Ok(true) => inside += 1,
                     Ok(false) => {}
                     Err(msg) => failures.push(msg),
@@ -87,7 +87,7 @@ fn interpreted_energies_at_hard_and_random_f_2d() {
             }
         }
         for (k, f) in fs.iter().enumerate() {
-            match check2(
+            match check_f(
                 &e,
                 f,
                 true,

@@ -121,16 +121,16 @@ fn f_space<const D: usize>(e: &dyn Energy<D>, f: &SMatrix<f64, D, D>) -> Vec<f64
     if D == 2 {
         let svd2: &ecc_runtime::Svd<2> = same_dim(&svd);
         let s2: &Spectral<2> = same_dim(&s);
-        v.extend(ecc_runtime::gradient_f2(svd2, s2).iter());
+        v.extend(ecc_runtime::gradient_f(svd2, s2).iter());
         for fl in [Filter::None, Filter::Clamp] {
-            v.extend(ecc_runtime::hessian_f2(svd2, s2, fl).iter());
+            v.extend(ecc_runtime::hessian_f(svd2, s2, fl).iter());
         }
     } else {
         let svd3: &ecc_runtime::Svd<3> = same_dim(&svd);
         let s3: &Spectral<3> = same_dim(&s);
-        v.extend(ecc_runtime::gradient_f3(svd3, s3).iter());
+        v.extend(ecc_runtime::gradient_f(svd3, s3).iter());
         for fl in [Filter::None, Filter::Clamp] {
-            v.extend(ecc_runtime::hessian_f3(svd3, s3, fl).iter());
+            v.extend(ecc_runtime::hessian_f(svd3, s3, fl).iter());
         }
     }
     v

@@ -6,7 +6,7 @@
 
 use ecc_runtime::Energy;
 use ecc_tests::cases::*;
-use ecc_tests::fcheck::{Worst, check2, check3};
+use ecc_tests::fcheck::{Worst, check_f};
 use ecc_tests::library::{library2, library3};
 
 ecc_macros::energy! {
@@ -86,7 +86,7 @@ fn generated_at_hard_cases_3d() {
             for (name, e, sym) in &energies {
                 let fd = *sym || !case.antipodal;
                 let label = format!("{name} / {} / σ = {:?}", case.name, case.sigma);
-                if let Err(msg) = check3(e.as_ref(), &f, fd, &label, &mut worst) {
+                if let Err(msg) = check_f(e.as_ref(), &f, fd, &label, &mut worst) {
                     failures.push(msg);
                 }
             }
@@ -107,7 +107,7 @@ fn generated_at_hard_cases_2d() {
             for (name, e, sym) in &energies {
                 let fd = *sym || !case.antipodal;
                 let label = format!("{name} / {} / σ = {:?}", case.name, case.sigma);
-                if let Err(msg) = check2(e.as_ref(), &f, fd, &label, &mut worst) {
+                if let Err(msg) = check_f(e.as_ref(), &f, fd, &label, &mut worst) {
                     failures.push(msg);
                 }
             }
@@ -125,7 +125,7 @@ fn generated_at_random_f() {
     for f in random_f3(&mut r, 10) {
         for (name, e, _) in &e3 {
             let label = format!("{name} / random F = {:?}", f.as_slice());
-            if let Err(msg) = check3(e.as_ref(), &f, true, &label, &mut worst) {
+            if let Err(msg) = check_f(e.as_ref(), &f, true, &label, &mut worst) {
                 failures.push(msg);
             }
         }
@@ -133,7 +133,7 @@ fn generated_at_random_f() {
     for f in random_f2(&mut r, 10) {
         for (name, e, _) in &e2 {
             let label = format!("{name} / random F = {:?}", f.as_slice());
-            if let Err(msg) = check2(e.as_ref(), &f, true, &label, &mut worst) {
+            if let Err(msg) = check_f(e.as_ref(), &f, true, &label, &mut worst) {
                 failures.push(msg);
             }
         }

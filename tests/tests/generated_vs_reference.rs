@@ -8,7 +8,7 @@ use ecc_runtime::energies as hand;
 use ecc_runtime::{Energy, EnergyInfo, Spectral};
 use ecc_tests::cases::*;
 use ecc_tests::close;
-use ecc_tests::fcheck::{Worst, check3};
+use ecc_tests::fcheck::{Worst, check_f};
 
 const TOL: f64 = 1e-12;
 
@@ -169,13 +169,13 @@ impl Energy<3> for Broken {
 fn the_checker_catches_wrong_derivatives() {
     let f = compose(&rot3(&mut rng(53)), &[1.4, 1.1, 0.8], &rot3(&mut rng(54)));
     let mut w = Worst::default();
-    assert!(check3(&StableNeoHookean::new(), &f, true, "ok", &mut w).is_ok());
+    assert!(check_f(&StableNeoHookean::new(), &f, true, "ok", &mut w).is_ok());
     for what in ["grad", "twist", "flip"] {
         let b = Broken {
             inner: StableNeoHookean::new(),
             what,
         };
-        let r = check3(&b, &f, true, what, &mut w);
+        let r = check_f(&b, &f, true, what, &mut w);
         assert!(r.is_err(), "a wrong {what} was not caught");
     }
 }

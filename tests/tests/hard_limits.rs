@@ -20,7 +20,7 @@
 
 mod hard_ref;
 
-use ecc_runtime::{Filter, Spectral, hessian_f2, hessian_f3, pair_indices};
+use ecc_runtime::{Filter, Spectral, hessian_f, pair_indices};
 use hard_ref::dd::Dd;
 use hard_ref::energies::{Formula, formulas2, formulas3};
 use hard_ref::graph::PsiGraph;
@@ -122,7 +122,7 @@ trait ClampFinite {
 impl ClampFinite for Spectral<3> {
     fn clamp_finite(&self, sigma: &[f64]) -> bool {
         let f = Matrix3::from_diagonal(&nalgebra::Vector3::from_column_slice(sigma));
-        let h = hessian_f3(&ecc_runtime::signed_svd3(&f), self, Filter::Clamp);
+        let h = hessian_f(&ecc_runtime::signed_svd3(&f), self, Filter::Clamp);
         h.iter().all(|x| x.is_finite())
     }
 }
@@ -130,7 +130,7 @@ impl ClampFinite for Spectral<3> {
 impl ClampFinite for Spectral<2> {
     fn clamp_finite(&self, sigma: &[f64]) -> bool {
         let f = Matrix2::from_diagonal(&nalgebra::Vector2::from_column_slice(sigma));
-        let h = hessian_f2(&ecc_runtime::signed_svd2(&f), self, Filter::Clamp);
+        let h = hessian_f(&ecc_runtime::signed_svd2(&f), self, Filter::Clamp);
         h.iter().all(|x| x.is_finite())
     }
 }

@@ -29,8 +29,8 @@
 mod hard_ref;
 
 use ecc_runtime::{
-    Energy, Filter, RestError, ScaleBlock, Spectral, TetRest, TriRest, hessian_f2, hessian_f3,
-    signed_svd2, signed_svd3, tet_eval, tri_eval,
+    Energy, Filter, Rest, RestError, ScaleBlock, Spectral, element_eval, hessian_f, signed_svd2,
+    signed_svd3,
 };
 use hard_ref::dd::Dd;
 use hard_ref::energies::{Formula, formulas2, formulas3};
@@ -164,7 +164,7 @@ trait Lift {
 impl Lift for Spectral<3> {
     fn clamped_finite(&self, sigma: &[f64]) -> bool {
         let f = Matrix3::from_diagonal(&Vector3::from_column_slice(sigma));
-        hessian_f3(&signed_svd3(&f), self, Filter::Clamp)
+        hessian_f(&signed_svd3(&f), self, Filter::Clamp)
             .iter()
             .all(|x| x.is_finite())
     }
@@ -173,7 +173,7 @@ impl Lift for Spectral<3> {
 impl Lift for Spectral<2> {
     fn clamped_finite(&self, sigma: &[f64]) -> bool {
         let f = Matrix2::from_diagonal(&Vector2::from_column_slice(sigma));
-        hessian_f2(&signed_svd2(&f), self, Filter::Clamp)
+        hessian_f(&signed_svd2(&f), self, Filter::Clamp)
             .iter()
             .all(|x| x.is_finite())
     }
@@ -181,7 +181,8 @@ impl Lift for Spectral<2> {
 
 /// A collapsed / inverted current tetrahedron for every filter.
 fn check_tets(formula: &Formula<3>, failures: &mut Vec<String>) {
-    let rest = TetRest::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).unwrap();
+    let rest =
+        Rest::<3>::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).unwrap();
     let shapes: [(&str, [[f64; 3]; 4]); 4] = [
         (
             "flat",
@@ -200,7 +201,7 @@ fn check_tets(formula: &Formula<3>, failures: &mut Vec<String>) {
     for imp in &formula.impls {
         for (name, x) in &shapes {
             for fl in FILTERS {
-                let ev = tet_eval(imp.energy.as_ref(), &rest, x, fl, true);
+                let ev = element_eval(imp.energy.as_ref(), &rest, x, fl, true);
                 let who = format!("{} ({}) {name} tet, {fl:?}", formula.name, imp.kind);
                 element_ok(
                     &who,
@@ -215,7 +216,7 @@ fn check_tets(formula: &Formula<3>, failures: &mut Vec<String>) {
 }
 
 fn check_tris(formula: &Formula<2>, failures: &mut Vec<String>) {
-    let rest = TriRest::from_2d([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]).unwrap();
+    let rest = Rest::<2>::new([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]).unwrap();
     let shapes: [(&str, [[f64; 2]; 3]); 3] = [
         ("flat", [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]),
         ("inverted", [[0.0, 0.0], [1.0, 0.0], [0.0, -1.0]]),
@@ -224,7 +225,7 @@ fn check_tris(formula: &Formula<2>, failures: &mut Vec<String>) {
     for imp in &formula.impls {
         for (name, x) in &shapes {
             for fl in FILTERS {
-                let ev = tri_eval(imp.energy.as_ref(), &rest, x, fl, true);
+                let ev = element_eval(imp.energy.as_ref(), &rest, x, fl, true);
                 let who = format!("{} ({}) {name} triangle, {fl:?}", formula.name, imp.kind);
                 element_ok(
                     &who,
@@ -285,14 +286,14 @@ fn singular_sigma_give_infinity_or_finite_values_never_nan_2d() {
 
 #[test]
 fn degenerate_and_inverted_rest_shapes_are_refused_with_their_reason() {
-    let flat = TetRest::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]);
+    let flat = Rest::<3>::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]);
     assert!(
         matches!(flat, Err(RestError::Degenerate { .. })),
         "{flat:?}"
     );
     let e = flat.unwrap_err().to_string();
     assert!(e.contains("degenerate rest element"), "{e}");
-    let inverted = TetRest::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]);
+    let inverted = Rest::<3>::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]]);
     assert!(matches!(inverted, Err(RestError::Inverted { measure }) if measure < 0.0));
     assert!(
         inverted
@@ -300,14 +301,14 @@ fn degenerate_and_inverted_rest_shapes_are_refused_with_their_reason() {
             .to_string()
             .contains("inverted rest element")
     );
-    let nan = TetRest::new([
+    let nan = Rest::<3>::new([
         [0.0; 3],
         [f64::NAN, 0.0, 0.0],
         [0.0, 1.0, 0.0],
         [0.0, 0.0, 1.0],
     ]);
     assert!(matches!(nan, Err(RestError::Degenerate { measure }) if measure.is_nan()));
-    let sliver = TetRest::new([
+    let sliver = Rest::<3>::new([
         [0.0; 3],
         [1.0, 0.0, 0.0],
         [0.0, 1.0, 0.0],
@@ -317,13 +318,13 @@ fn degenerate_and_inverted_rest_shapes_are_refused_with_their_reason() {
         matches!(sliver, Err(RestError::Degenerate { .. })),
         "{sliver:?}"
     );
-    let t = TriRest::from_2d([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]);
+    let t = Rest::<2>::new([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]);
     assert!(matches!(t, Err(RestError::Degenerate { .. })), "{t:?}");
-    let t = TriRest::from_2d([[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]);
+    let t = Rest::<2>::new([[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]]);
     assert!(matches!(t, Err(RestError::Inverted { .. })), "{t:?}");
-    let t = TriRest::from_3d([[0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]);
+    let t = Rest::<2>::from_3d([[0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]);
     assert!(matches!(t, Err(RestError::Degenerate { .. })), "{t:?}");
-    let t = TriRest::from_2d([[0.0, 0.0], [f64::INFINITY, 0.0], [0.0, 1.0]]);
+    let t = Rest::<2>::new([[0.0, 0.0], [f64::INFINITY, 0.0], [0.0, 1.0]]);
     assert!(matches!(t, Err(RestError::Degenerate { .. })), "{t:?}");
 }
 

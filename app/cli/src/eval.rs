@@ -80,7 +80,7 @@ fn eval_dim<const D: usize>(
     as_json: bool,
 ) -> Result<String, CliError>
 where
-    crate::point::Ops: crate::point::PointOps<D>,
+    ecc_runtime::Space<D>: ecc_runtime::Dim<D>,
 {
     let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
     let m = SMatrix::<f64, D, D>::from_fn(|r, c| f.rows[r][c]);

@@ -6,7 +6,7 @@
 //! sum of its analytic eigenpairs (scaling, twist, flip modes), the projected
 //! Hessian with every eigenvalue clamped to max(λ, 0), and the eigenvalues.
 
-use ecc_runtime::{Energy, Filter, Spectral, Svd, signed_svd};
+use ecc_runtime::{Dim, Energy, FMat, Filter, Space, eigen_f, gradient_f, hessian_f, signed_svd};
 use nalgebra::SMatrix;
 
 /// The analytic quantities at one F (vectors column-major, matrices by rows).
@@ -48,48 +48,20 @@ impl PointEval {
     }
 }
 
-fn rows<const N: usize>(m: &SMatrix<f64, N, N>) -> Vec<Vec<f64>> {
-    (0..N)
-        .map(|i| (0..N).map(|j| m[(i, j)]).collect())
+fn rows<const D: usize>(m: &FMat<D>) -> Vec<Vec<f64>>
+where
+    Space<D>: Dim<D>,
+{
+    let n = D * D;
+    (0..n)
+        .map(|i| (0..n).map(|j| m[(i, j)]).collect())
         .collect()
-}
-
-/// (gradient, raw Hessian rows, projected Hessian rows, eigenvalues).
-pub type Lifted = (Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<f64>);
-
-/// The per-dimension runtime entry points, so [`evaluate`] is written once.
-pub trait PointOps<const D: usize> {
-    /// (gradient, raw Hessian rows, projected Hessian rows, eigenvalues).
-    fn lift(svd: &Svd<D>, s: &Spectral<D>) -> Lifted;
-}
-
-/// Marker type selecting the 2D or 3D runtime functions.
-pub struct Ops;
-
-impl PointOps<2> for Ops {
-    fn lift(svd: &Svd<2>, s: &Spectral<2>) -> Lifted {
-        let g = ecc_runtime::gradient_f2(svd, s);
-        let h = ecc_runtime::hessian_f2(svd, s, Filter::None);
-        let p = ecc_runtime::hessian_f2(svd, s, Filter::Clamp);
-        let (ev, _) = ecc_runtime::eigen_f2(svd, s);
-        (g.as_slice().to_vec(), rows(&h), rows(&p), ev.to_vec())
-    }
-}
-
-impl PointOps<3> for Ops {
-    fn lift(svd: &Svd<3>, s: &Spectral<3>) -> Lifted {
-        let g = ecc_runtime::gradient_f3(svd, s);
-        let h = ecc_runtime::hessian_f3(svd, s, Filter::None);
-        let p = ecc_runtime::hessian_f3(svd, s, Filter::Clamp);
-        let (ev, _) = ecc_runtime::eigen_f3(svd, s);
-        (g.as_slice().to_vec(), rows(&h), rows(&p), ev.to_vec())
-    }
 }
 
 /// Evaluate `e` at `f` (outside the domain: Ψ = +∞ and all derivatives empty).
 pub fn evaluate<const D: usize>(e: &dyn Energy<D>, f: &SMatrix<f64, D, D>) -> PointEval
 where
-    Ops: PointOps<D>,
+    Space<D>: Dim<D>,
 {
     let svd = signed_svd(f);
     let s = e.spectral(&svd.sigma);
@@ -105,14 +77,15 @@ where
             eigenvalues: Vec::new(),
         };
     }
-    let (gradient, hessian, hessian_projected, eigenvalues) = Ops::lift(&svd, &s);
+    let g = gradient_f(&svd, &s);
+    let (eigenvalues, _) = eigen_f(&svd, &s);
     PointEval {
         dim: D,
         sigma,
         psi: s.psi,
-        gradient,
-        hessian,
-        hessian_projected,
-        eigenvalues,
+        gradient: (0..D * D).map(|k| g[k]).collect(),
+        hessian: rows::<D>(&hessian_f(&svd, &s, Filter::None)),
+        hessian_projected: rows::<D>(&hessian_f(&svd, &s, Filter::Clamp)),
+        eigenvalues: eigenvalues.as_ref().to_vec(),
     }
 }

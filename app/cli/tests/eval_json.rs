@@ -37,7 +37,10 @@ fn rel(a: &[f64], b: &[f64]) -> f64 {
         / scale
 }
 
-fn check<const D: usize>(name: &str, path: &str, f_text: &str, rows: [[f64; D]; D]) {
+fn check<const D: usize>(name: &str, path: &str, f_text: &str, rows: [[f64; D]; D])
+where
+    ecc_runtime::Space<D>: ecc_runtime::Dim<D>,
+{
     let dim = D.to_string();
     let text = ok(&["eval", path, "--dim", &dim, "--F", f_text, "--json"]);
     let v: Value =
@@ -72,8 +75,9 @@ fn check<const D: usize>(name: &str, path: &str, f_text: &str, rows: [[f64; D]; 
         "{name}: gradient vs differences"
     );
     let h_fd = fd_hessian_f(e.as_ref(), &f);
+    let h_fd: Vec<f64> = (0..n * n).map(|k| h_fd[(k % n, k / n)]).collect();
     assert!(
-        rel(h.as_slice(), h_fd.as_slice()) < 1e-5,
+        rel(h.as_slice(), &h_fd) < 1e-5,
         "{name}: Hessian vs differences"
     );
     let sym = (&h + h.transpose()) * 0.5;

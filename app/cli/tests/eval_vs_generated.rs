@@ -94,34 +94,34 @@ fn reference<const D: usize>(e: &dyn Energy<D>, f: &SMatrix<f64, D, D>) -> Optio
         any.downcast_ref::<ecc_runtime::Svd<2>>(),
         sp.downcast_ref::<ecc_runtime::Spectral<2>>(),
     ) {
-        v.extend(ecc_runtime::gradient_f2(svd, s).iter());
+        v.extend(ecc_runtime::gradient_f(svd, s).iter());
         v.extend(
-            ecc_runtime::hessian_f2(svd, s, Filter::None)
+            ecc_runtime::hessian_f(svd, s, Filter::None)
                 .transpose()
                 .iter(),
         );
         v.extend(
-            ecc_runtime::hessian_f2(svd, s, Filter::Clamp)
+            ecc_runtime::hessian_f(svd, s, Filter::Clamp)
                 .transpose()
                 .iter(),
         );
-        v.extend(ecc_runtime::eigen_f2(svd, s).0);
+        v.extend(ecc_runtime::eigen_f(svd, s).0);
     } else if let (Some(svd), Some(s)) = (
         any.downcast_ref::<ecc_runtime::Svd<3>>(),
         sp.downcast_ref::<ecc_runtime::Spectral<3>>(),
     ) {
-        v.extend(ecc_runtime::gradient_f3(svd, s).iter());
+        v.extend(ecc_runtime::gradient_f(svd, s).iter());
         v.extend(
-            ecc_runtime::hessian_f3(svd, s, Filter::None)
+            ecc_runtime::hessian_f(svd, s, Filter::None)
                 .transpose()
                 .iter(),
         );
         v.extend(
-            ecc_runtime::hessian_f3(svd, s, Filter::Clamp)
+            ecc_runtime::hessian_f(svd, s, Filter::Clamp)
                 .transpose()
                 .iter(),
         );
-        v.extend(ecc_runtime::eigen_f3(svd, s).0);
+        v.extend(ecc_runtime::eigen_f(svd, s).0);
     }
     Some(v)
 }

@@ -15,7 +15,7 @@ use super::{Method, Target};
 use crate::cases::{CLASSES, REST_TET, REST_TRI, deform, samples2, samples3};
 use crate::energies::{EnergySetError, energies2, energies3};
 use crate::reference::{ElementRef, element as reference, rel_err};
-use ecc_runtime::{TetRest, TriRest};
+use ecc_runtime::Rest;
 
 /// Worst errors of one method on one (dimension, energy, class).
 #[derive(Clone, Debug, Serialize)]
@@ -148,8 +148,8 @@ pub fn run_limited(
         samples_per_class: n,
         ..Default::default()
     };
-    let rest2 = TriRest::from_2d(REST_TRI).map_err(|e| EnergySetError(e.to_string()))?;
-    let rest3 = TetRest::new(REST_TET).map_err(|e| EnergySetError(e.to_string()))?;
+    let rest2 = Rest::<2>::new(REST_TRI).map_err(|e| EnergySetError(e.to_string()))?;
+    let rest3 = Rest::<3>::new(REST_TET).map_err(|e| EnergySetError(e.to_string()))?;
     for e in energies2()?.into_iter().take(energies) {
         for (ci, c) in CLASSES.iter().enumerate().take(classes) {
             if e.barrier && c.inverted && !c.random {

@@ -6,8 +6,7 @@
 
 use ecc_runtime::reference::project_psd_numeric;
 use ecc_runtime::{
-    Energy, Filter, TetRest, TriRest, gradient_f2, gradient_f3, hessian_f2, hessian_f3,
-    signed_svd2, signed_svd3, tet_eval, tet_f, tri_eval, tri_f,
+    Energy, Filter, Rest, element_eval, element_f, gradient_f, hessian_f, signed_svd,
 };
 use nalgebra::SMatrix;
 
@@ -17,12 +16,14 @@ use crate::generic_kernel::GenericEnergy;
 /// A method's output: ψ, gradient (N) and row-major Hessian (N×N).
 pub type Output = (f64, Vec<f64>, Vec<f64>);
 
+/// One element type per size (the dense B is d² × d(d + 1), sizes stable Rust
+/// cannot derive from d); every kernel called is the runtime's generic one.
 macro_rules! element_kind {
-    ($name:ident, $rest:ty, $d:expr, $k:expr, $r:expr, $n:expr, $eval:ident, $f:ident, $svd:ident, $gf:ident, $hf:ident, $measure:ident) => {
+    ($name:ident, $d:literal, $k:literal, $r:literal, $n:literal) => {
         /// One element: rest data, nodes, and dense ∂vec(F)/∂x.
         #[derive(Clone, Debug)]
         pub struct $name {
-            pub rest: $rest,
+            pub rest: Rest<$d>,
             pub x: [[f64; $d]; $k],
             /// ∂vec(F)/∂x (column-major vec, node-major x).
             pub b: SMatrix<f64, $r, $n>,
@@ -30,12 +31,12 @@ macro_rules! element_kind {
 
         impl $name {
             /// Element from rest data and deformed nodes.
-            pub fn new(rest: $rest, x: [[f64; $d]; $k]) -> Self {
-                let f0 = $f(&rest, &[[0.0; $d]; $k]);
+            pub fn new(rest: Rest<$d>, x: [[f64; $d]; $k]) -> Self {
+                let f0 = element_f(&rest, &[[0.0; $d]; $k]);
                 let b = SMatrix::from_fn(|i, col| {
                     let mut e = [[0.0; $d]; $k];
                     e[col / $d][col % $d] = 1.0;
-                    let fk = $f(&rest, &e) - f0;
+                    let fk = element_f(&rest, &e) - f0;
                     fk[(i % $d, i / $d)]
                 });
                 $name { rest, x, b }
@@ -50,7 +51,7 @@ macro_rules! element_kind {
 
             /// Rest measure.
             pub fn measure(&self) -> f64 {
-                self.rest.$measure
+                self.rest.measure
             }
 
             /// Node-major positions.
@@ -65,7 +66,7 @@ macro_rules! element_kind {
                 e: &E,
                 filter: Filter,
             ) -> (f64, [f64; $n], SMatrix<f64, $n, $n>) {
-                let ev = $eval(e, &self.rest, &self.x, filter, true);
+                let ev = element_eval(e, &self.rest, &self.x, filter, true);
                 (ev.psi, ev.grad.into(), ev.hess)
             }
 
@@ -75,7 +76,7 @@ macro_rules! element_kind {
                 &self,
                 e: &E,
             ) -> (f64, [f64; $n], SMatrix<f64, $n, $n>) {
-                let ev = $eval(e, &self.rest, &self.x, Filter::None, true);
+                let ev = element_eval(e, &self.rest, &self.x, Filter::None, true);
                 (
                     ev.psi,
                     ev.grad.into(),
@@ -89,9 +90,9 @@ macro_rules! element_kind {
                 &self,
                 e: &E,
             ) -> (f64, [f64; $n], SMatrix<f64, $n, $n>) {
-                let f = $f(&self.rest, &self.x);
-                let svd = $svd(&f);
-                let m = self.rest.$measure;
+                let f = element_f(&self.rest, &self.x);
+                let svd = signed_svd(&f);
+                let m = self.rest.measure;
                 if !svd.is_finite() {
                     return (f64::NAN, [0.0; $n], SMatrix::zeros());
                 }
@@ -99,8 +100,8 @@ macro_rules! element_kind {
                 if !s.psi.is_finite() {
                     return (m * s.psi, [0.0; $n], SMatrix::zeros());
                 }
-                let g = $gf(&svd, &s);
-                let h = project_psd_numeric(&$hf(&svd, &s, Filter::None), Filter::Clamp);
+                let g = gradient_f(&svd, &s);
+                let h = project_psd_numeric(&hessian_f(&svd, &s, Filter::None), Filter::Clamp);
                 let bt = self.b.transpose() * m;
                 let grad = bt * g;
                 (m * s.psi, grad.into(), bt * h * self.b)
@@ -149,31 +150,5 @@ macro_rules! element_kind {
     };
 }
 
-element_kind!(
-    Element2,
-    TriRest,
-    2,
-    3,
-    4,
-    6,
-    tri_eval,
-    tri_f,
-    signed_svd2,
-    gradient_f2,
-    hessian_f2,
-    area
-);
-element_kind!(
-    Element3,
-    TetRest,
-    3,
-    4,
-    9,
-    12,
-    tet_eval,
-    tet_f,
-    signed_svd3,
-    gradient_f3,
-    hessian_f3,
-    volume
-);
+element_kind!(Element2, 2, 3, 4, 6);
+element_kind!(Element3, 3, 4, 9, 12);

@@ -12,7 +12,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use ecc_runtime::{Filter, TetRest, TriRest};
+use ecc_runtime::{Filter, Rest};
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -49,10 +49,10 @@ fn batch2(n: usize, inverted: bool, seed: u64) -> Vec<Element2> {
     while out.len() < n {
         let p: [[f64; 2]; 3] =
             std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-1.0..1.0)));
-        let Ok(rest) = TriRest::from_2d(p) else {
+        let Ok(rest) = Rest::<2>::new(p) else {
             continue;
         };
-        if rest.area < 0.05 {
+        if rest.measure < 0.05 {
             continue;
         }
         let mut f = Matrix2::identity() + Matrix2::from_fn(|_, _| r.gen_range(-0.4..0.4));
@@ -77,8 +77,10 @@ fn batch3(n: usize, inverted: bool, seed: u64) -> Vec<Element3> {
     while out.len() < n {
         let p: [[f64; 3]; 4] =
             std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-1.0..1.0)));
-        let Ok(rest) = TetRest::new(p) else { continue };
-        if rest.volume < 0.02 {
+        let Ok(rest) = Rest::<3>::new(p) else {
+            continue;
+        };
+        if rest.measure < 0.02 {
             continue;
         }
         let mut f = Matrix3::identity() + Matrix3::from_fn(|_, _| r.gen_range(-0.4..0.4));

@@ -16,8 +16,8 @@
 //!   where w_n is row n−1 of Dm⁻¹ (w_0 = −Σ w_n).
 
 use ecc_fem::{Filter, Term};
+use ecc_runtime::Rest;
 use ecc_runtime::reference::project_psd_numeric;
-use ecc_runtime::{TetRest, TriRest};
 use nalgebra::SMatrix;
 
 /// Numeric per-element projection around an element term.
@@ -119,12 +119,12 @@ fn weights(dm_inv: &[f64], d: usize) -> Vec<Vec<f64>> {
 
 impl LaplacianProxy<2> {
     /// Proxy for a triangle term with rest data `rest` (one per stencil).
-    pub fn tri(inner: Box<dyn Term<2>>, rest: &[TriRest]) -> Self {
+    pub fn tri(inner: Box<dyn Term<2>>, rest: &[Rest<2>]) -> Self {
         let hess = rest
             .iter()
             .flat_map(|r| {
                 let dm: Vec<f64> = (0..4).map(|i| r.dm_inv[(i / 2, i % 2)]).collect();
-                proxy_block(&weights(&dm, 2), 2, r.area)
+                proxy_block(&weights(&dm, 2), 2, r.measure)
             })
             .collect();
         let name = format!("{}+laplacian-proxy", inner.name());
@@ -139,12 +139,12 @@ impl LaplacianProxy<2> {
 
 impl LaplacianProxy<3> {
     /// Proxy for a tet term with rest data `rest` (one per stencil).
-    pub fn tet(inner: Box<dyn Term<3>>, rest: &[TetRest]) -> Self {
+    pub fn tet(inner: Box<dyn Term<3>>, rest: &[Rest<3>]) -> Self {
         let hess = rest
             .iter()
             .flat_map(|r| {
                 let dm: Vec<f64> = (0..9).map(|i| r.dm_inv[(i / 3, i % 3)]).collect();
-                proxy_block(&weights(&dm, 3), 3, r.volume)
+                proxy_block(&weights(&dm, 3), 3, r.measure)
             })
             .collect();
         let name = format!("{}+laplacian-proxy", inner.name());

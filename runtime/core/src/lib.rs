@@ -35,10 +35,11 @@
 //! | [`stretch`] | [`spectral_from_stretch`]: Ψ through ∂Ψ/∂σ, ∂²Ψ/∂σ² (Zhu §4) |
 //! | [`divided`] | removable singularities of the divided differences, switch threshold ε^{1/3} |
 //! | [`filter`] | [`Filter`]: `None` (raw), `Clamp` (default), `ClampEps(ε)`, `Abs` |
-//! | [`point`] | F-space gradient / raw or filtered Hessian / eigenpairs |
-//! | [`element`] | [`TriRest`], [`TetRest`], [`tri_eval`], [`tet_eval`] (x-space, × rest measure) |
+//! | [`dim`] | [`Space<D>`] and the sealed [`Dim<D>`]: the d², d + 1 and d(d + 1) sized types and kernels; callers are generic over `D` with `Space<D>: Dim<D>` |
+//! | [`point`] | [`gradient_f`], [`hessian_f`] (raw or filtered), [`eigen_f`]: F-space quantities at one point |
+//! | [`element`] | [`Rest<D>`] (Dm⁻¹, measure), [`element_f`], [`element_psi`], [`element_eval`] (x-space, × rest measure) |
 //! | [`energies`] | hand-written ARAP, Symmetric Dirichlet, Stable Neo-Hookean |
-//! | [`reference`](mod@reference) | nalgebra projection and central differences (tests, benches, `ecc check`) |
+//! | [`reference`](mod@reference) | nalgebra projection and central differences [`fd_gradient_f`](reference::fd_gradient_f), [`fd_hessian_f`](reference::fd_hessian_f) (tests, benches, `ecc check`) |
 //!
 //! ## Writing an energy
 //!
@@ -46,7 +47,7 @@
 //! [`Spectral`], most easily through one of the two generic paths:
 //!
 //! ```
-//! use ecc_runtime::{spectral_from_invariants, tet_eval, Energy, Filter, Spectral, TetRest};
+//! use ecc_runtime::{spectral_from_invariants, element_eval, Energy, Filter, Rest, Spectral};
 //!
 //! /// Ψ = ‖F‖² − 2 det F + 1 … any function of the invariants I1, I2, I3.
 //! struct MyEnergy;
@@ -63,9 +64,9 @@
 //!     }
 //! }
 //!
-//! let rest = TetRest::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).unwrap();
+//! let rest = Rest::<3>::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).unwrap();
 //! let x = [[0.0; 3], [1.2, 0.1, 0.0], [0.0, 0.9, 0.0], [0.1, 0.0, 1.1]];
-//! let ev = tet_eval(&MyEnergy, &rest, &x, Filter::Clamp, true);
+//! let ev = element_eval(&MyEnergy, &rest, &x, Filter::Clamp, true);
 //! assert!(ev.psi.is_finite() && ev.hess.iter().all(|h| h.is_finite()));
 //! ```
 //!
@@ -98,7 +99,7 @@
 //! ## Speed
 //!
 //! `cargo bench -p ecc-benches --bench eigen` compares, per tetrahedron, the
-//! analytic projected 12×12 (`tet_eval`, `Filter::Clamp`) with nalgebra's
+//! analytic projected 12×12 (`element_eval::<3>`, `Filter::Clamp`) with nalgebra's
 //! numeric projection of the 12×12 and of the 9×9, and the SVD with nalgebra's;
 //! it prints the ratios at the end of the run.
 
@@ -106,6 +107,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod assemble;
+pub mod dim;
 pub mod divided;
 pub mod element;
 pub mod energies;
@@ -120,13 +122,12 @@ pub mod stretch;
 pub mod svd;
 pub mod sym;
 
-pub use element::{
-    ElementEval, RestError, TetRest, TriRest, tet_eval, tet_f, tet_psi, tri_eval, tri_f, tri_psi,
-};
+pub use dim::{Dim, ElemMat, ElemVec, FMat, FVec, Nodes, Space};
+pub use element::{ElementEval, Rest, RestError, element_eval, element_f, element_psi};
 pub use energy::{Energy, EnergyInfo, ParamError};
 pub use filter::Filter;
 pub use invariants::spectral_from_invariants;
-pub use point::{eigen_f2, eigen_f3, gradient_f2, gradient_f3, hessian_f2, hessian_f3};
+pub use point::{eigen_f, gradient_f, hessian_f};
 pub use spectral::{PAIRS_2D, PAIRS_3D, ScaleBlock, Spectral, pair_indices};
 pub use stretch::spectral_from_stretch;
 pub use svd::{Svd, signed_svd, signed_svd2, signed_svd3};

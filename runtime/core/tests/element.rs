@@ -9,8 +9,8 @@ use common::*;
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
 use ecc_runtime::reference::{fd_gradient, fd_hessian, project_psd_numeric};
 use ecc_runtime::{
-    Energy, Filter, RestError, TetRest, TriRest, hessian_f2, hessian_f3, signed_svd2, signed_svd3,
-    tet_eval, tet_f, tet_psi, tri_eval, tri_f, tri_psi,
+    Energy, Filter, Rest, RestError, element_eval, element_f, element_psi, hessian_f, signed_svd2,
+    signed_svd3,
 };
 use nalgebra::{Matrix2, Matrix3, SMatrix, SVector, SymmetricEigen};
 use rand::Rng;
@@ -27,7 +27,7 @@ fn random_tet(r: &mut ChaCha8Rng) -> [[f64; 3]; 4] {
     loop {
         let p: [[f64; 3]; 4] =
             std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-1.0..1.0)));
-        if TetRest::new(p).is_ok_and(|rest| rest.volume > 0.02) {
+        if Rest::<3>::new(p).is_ok_and(|rest| rest.measure > 0.02) {
             return p;
         }
     }
@@ -55,22 +55,22 @@ fn unflat2(v: &SVector<f64, 6>) -> [[f64; 2]; 3] {
 }
 
 /// Dense B = ∂vec(F)/∂x of a tet, column k = vec(F(e_k)) − vec(F(0)) (F is linear in x).
-fn dense_b3(rest: &TetRest) -> SMatrix<f64, 9, 12> {
-    let f0 = tet_f(rest, &[[0.0; 3]; 4]);
+fn dense_b3(rest: &Rest<3>) -> SMatrix<f64, 9, 12> {
+    let f0 = element_f(rest, &[[0.0; 3]; 4]);
     SMatrix::from_fn(|i, k| {
         let mut e = SVector::<f64, 12>::zeros();
         e[k] = 1.0;
-        let f = tet_f(rest, &unflat3(&e)) - f0;
+        let f = element_f(rest, &unflat3(&e)) - f0;
         f[(i % 3, i / 3)]
     })
 }
 
-fn dense_b2(rest: &TriRest) -> SMatrix<f64, 4, 6> {
-    let f0 = tri_f(rest, &[[0.0; 2]; 3]);
+fn dense_b2(rest: &Rest<2>) -> SMatrix<f64, 4, 6> {
+    let f0 = element_f(rest, &[[0.0; 2]; 3]);
     SMatrix::from_fn(|i, k| {
         let mut e = SVector::<f64, 6>::zeros();
         e[k] = 1.0;
-        let f = tri_f(rest, &unflat2(&e)) - f0;
+        let f = element_f(rest, &unflat2(&e)) - f0;
         f[(i % 2, i / 2)]
     })
 }
@@ -100,60 +100,60 @@ fn rest_data_and_errors() {
         [0.0, 1.0, 0.0],
         [0.0, 0.0, 1.0],
     ];
-    let rest = TetRest::new(p).unwrap();
-    assert!((rest.volume - 1.0 / 6.0).abs() < 1e-15);
-    assert!(max_diff(&tet_f(&rest, &p), &Matrix3::identity()) < 1e-15);
+    let rest = Rest::<3>::new(p).unwrap();
+    assert!((rest.measure - 1.0 / 6.0).abs() < 1e-15);
+    assert!(max_diff(&element_f(&rest, &p), &Matrix3::identity()) < 1e-15);
     let inv = [p[0], p[2], p[1], p[3]];
     assert!(
-        matches!(TetRest::new(inv), Err(RestError::Inverted { measure }) if (measure + 1.0 / 6.0).abs() < 1e-15)
+        matches!(Rest::<3>::new(inv), Err(RestError::Inverted { measure }) if (measure + 1.0 / 6.0).abs() < 1e-15)
     );
     let flat = [p[0], p[1], p[2], [1.0, 1.0, 0.0]];
     assert!(matches!(
-        TetRest::new(flat),
+        Rest::<3>::new(flat),
         Err(RestError::Degenerate { .. })
     ));
     assert!(matches!(
-        TetRest::new([p[0], p[0], p[2], p[3]]),
+        Rest::<3>::new([p[0], p[0], p[2], p[3]]),
         Err(RestError::Degenerate { .. })
     ));
     let mut nan = p;
     nan[2][1] = f64::NAN;
     assert!(
-        matches!(TetRest::new(nan), Err(RestError::Degenerate { measure }) if measure.is_nan())
+        matches!(Rest::<3>::new(nan), Err(RestError::Degenerate { measure }) if measure.is_nan())
     );
     let mut inf = p;
     inf[3][0] = f64::INFINITY;
     assert!(matches!(
-        TetRest::new(inf),
+        Rest::<3>::new(inf),
         Err(RestError::Degenerate { .. })
     ));
     // Error messages say what is wrong.
     assert!(
-        TetRest::new(inv)
+        Rest::<3>::new(inv)
             .unwrap_err()
             .to_string()
             .contains("inverted")
     );
     assert!(
-        TetRest::new(flat)
+        Rest::<3>::new(flat)
             .unwrap_err()
             .to_string()
             .contains("degenerate")
     );
 
     let t = [[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]];
-    let tr = TriRest::from_2d(t).unwrap();
-    assert!((tr.area - 1.0).abs() < 1e-15);
+    let tr = Rest::<2>::new(t).unwrap();
+    assert!((tr.measure - 1.0).abs() < 1e-15);
     assert!(matches!(
-        TriRest::from_2d([t[0], t[2], t[1]]),
+        Rest::<2>::new([t[0], t[2], t[1]]),
         Err(RestError::Inverted { .. })
     ));
     assert!(matches!(
-        TriRest::from_2d([t[0], t[1], [4.0, 0.0]]),
+        Rest::<2>::new([t[0], t[1], [4.0, 0.0]]),
         Err(RestError::Degenerate { .. })
     ));
     assert!(matches!(
-        TriRest::from_3d([[0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]),
+        Rest::<2>::from_3d([[0.0; 3], [1.0, 1.0, 1.0], [2.0, 2.0, 2.0]]),
         Err(RestError::Degenerate { .. })
     ));
 
@@ -163,10 +163,10 @@ fn rest_data_and_errors() {
     for _ in 0..50 {
         let t: [[f64; 2]; 3] =
             std::array::from_fn(|_| [r.gen_range(-1.0..1.0), r.gen_range(-1.0..1.0)]);
-        let Ok(planar) = TriRest::from_2d(t) else {
+        let Ok(planar) = Rest::<2>::new(t) else {
             continue;
         };
-        if planar.area < 1e-2 {
+        if planar.measure < 1e-2 {
             continue;
         }
         let q = rot3(&mut r);
@@ -174,9 +174,9 @@ fn rest_data_and_errors() {
             let y = q * nalgebra::Vector3::new(t[n][0], t[n][1], 0.0);
             [y[0] + 0.3, y[1], y[2] - 1.0]
         });
-        let s = TriRest::from_3d(p3).unwrap();
-        assert!((s.area - planar.area).abs() < 1e-13);
-        let f = tri_f(&s, &t);
+        let s = Rest::<2>::from_3d(p3).unwrap();
+        assert!((s.measure - planar.measure).abs() < 1e-13);
+        let f = element_f(&s, &t);
         assert!(
             max_diff(&(f.transpose() * f), &Matrix2::identity()) < 1e-12,
             "{f}"
@@ -197,10 +197,10 @@ fn tet_kernels_match_differences_and_dense_chain_rule() {
     let mut worst = (0.0f64, 0.0f64);
     for f in &fs {
         let p = random_tet(&mut r);
-        let rest = TetRest::new(p).unwrap();
-        // x = F_target Dm ... chosen so that tet_f(rest, x) = f exactly up to rounding.
+        let rest = Rest::<3>::new(p).unwrap();
+        // x = F_target Dm ... chosen so that element_f(rest, x) = f exactly up to rounding.
         let x = deform3(&p, f, [0.3, -0.2, 0.7]);
-        let fx = tet_f(&rest, &x);
+        let fx = element_f(&rest, &x);
         let b = dense_b3(&rest);
         // Node steps δ change F by at most δ‖Dm⁻¹‖; keep them below σ_min(F)/‖Dm⁻¹‖
         // so barrier energies never see a step across det F = 0.
@@ -213,14 +213,15 @@ fn tet_kernels_match_differences_and_dense_chain_rule() {
                 flat3(&x).amax().max(1.0) * 0.2
             };
             let label = format!("{} at F = {:?}", e.name(), f.as_slice());
-            let raw = tet_eval(e.as_ref(), &rest, &x, Filter::None, true);
+            let raw = element_eval(e.as_ref(), &rest, &x, Filter::None, true);
             if !raw.psi.is_finite() {
                 continue;
             }
             assert!(
-                (raw.psi - tet_psi(e.as_ref(), &rest, &x)).abs() <= 1e-12 * raw.psi.abs().max(1.0)
+                (raw.psi - element_psi(e.as_ref(), &rest, &x)).abs()
+                    <= 1e-12 * raw.psi.abs().max(1.0)
             );
-            let psi_x = |v: &SVector<f64, 12>| tet_psi(e.as_ref(), &rest, &unflat3(v));
+            let psi_x = |v: &SVector<f64, 12>| element_psi(e.as_ref(), &rest, &unflat3(v));
             let g_fd = fd_gradient(psi_x, &flat3(&x), scale);
             let gs = raw.grad.amax().max(1.0);
             let eg = (raw.grad - g_fd).amax() / gs;
@@ -244,9 +245,9 @@ fn tet_kernels_match_differences_and_dense_chain_rule() {
                 Filter::ClampEps(1e-4),
                 Filter::Abs,
             ] {
-                let hf = hessian_f3(&svd, &s, fl);
-                let dense = b.transpose() * hf * b * rest.volume;
-                let got = tet_eval(e.as_ref(), &rest, &x, fl, true);
+                let hf = hessian_f(&svd, &s, fl);
+                let dense = b.transpose() * hf * b * rest.measure;
+                let got = element_eval(e.as_ref(), &rest, &x, fl, true);
                 let err = (got.hess - dense).amax() / dense.amax().max(1.0);
                 assert!(err < CHAIN_TOL, "{label}: {fl:?} chain rule error {err:e}");
                 assert_eq!(
@@ -266,9 +267,9 @@ fn tet_kernels_match_differences_and_dense_chain_rule() {
             }
             // When the F-Hessian is already PSD, the filtered 12×12 equals the
             // numeric projection of the raw 12×12 (which is then PSD itself).
-            let hraw = hessian_f3(&svd, &s, Filter::None);
+            let hraw = hessian_f(&svd, &s, Filter::None);
             if SymmetricEigen::new(hraw).eigenvalues.min() > 1e-9 * hraw.amax() {
-                let clamp = tet_eval(e.as_ref(), &rest, &x, Filter::Clamp, true);
+                let clamp = element_eval(e.as_ref(), &rest, &x, Filter::Clamp, true);
                 let num = project_psd_numeric(&raw.hess, Filter::Clamp);
                 let err = (clamp.hess - num).amax() / hs;
                 assert!(
@@ -277,7 +278,7 @@ fn tet_kernels_match_differences_and_dense_chain_rule() {
                 );
             }
             // Skipping the Hessian does not change ψ or the gradient.
-            let light = tet_eval(e.as_ref(), &rest, &x, Filter::Clamp, false);
+            let light = element_eval(e.as_ref(), &rest, &x, Filter::Clamp, false);
             assert_eq!(light.psi, raw.psi);
             assert_eq!(light.grad, raw.grad);
             assert_eq!(light.hess, SMatrix::<f64, 12, 12>::zeros());
@@ -303,16 +304,16 @@ fn tri_kernels_match_differences_and_dense_chain_rule() {
         let p: [[f64; 2]; 3] = loop {
             let p: [[f64; 2]; 3] =
                 std::array::from_fn(|_| [r.gen_range(-1.0..1.0), r.gen_range(-1.0..1.0)]);
-            if TriRest::from_2d(p).is_ok_and(|t| t.area > 0.05) {
+            if Rest::<2>::new(p).is_ok_and(|t| t.measure > 0.05) {
                 break p;
             }
         };
-        let rest = TriRest::from_2d(p).unwrap();
+        let rest = Rest::<2>::new(p).unwrap();
         let x: [[f64; 2]; 3] = std::array::from_fn(|n| {
             let y = f * nalgebra::Vector2::new(p[n][0], p[n][1]);
             [y[0] - 0.4, y[1] + 0.1]
         });
-        let fx = tri_f(&rest, &x);
+        let fx = element_f(&rest, &x);
         let b = dense_b2(&rest);
         let dm_norm = signed_svd2(&rest.dm_inv).sigma[0];
         let barrier_scale = signed_svd2(&fx).sigma[1].abs() / dm_norm;
@@ -323,18 +324,18 @@ fn tri_kernels_match_differences_and_dense_chain_rule() {
                 flat2(&x).amax().max(1.0) * 0.2
             };
             let label = format!("{} at F = {:?}", e.name(), f.as_slice());
-            let raw = tri_eval(e.as_ref(), &rest, &x, Filter::None, true);
+            let raw = element_eval(e.as_ref(), &rest, &x, Filter::None, true);
             if !raw.psi.is_finite() {
                 continue;
             }
             // The SVD-free ψ (SD, SNH in 2D) agrees with ψ(σ).
-            let via_svd = rest.area * e.psi(&signed_svd2(&fx).sigma);
-            let psi = tri_psi(e.as_ref(), &rest, &x);
+            let via_svd = rest.measure * e.psi(&signed_svd2(&fx).sigma);
+            let psi = element_psi(e.as_ref(), &rest, &x);
             assert!(
                 (psi - via_svd).abs() <= 1e-9 * psi.abs().max(1.0),
                 "{label}: {psi} vs {via_svd}"
             );
-            let psi_x = |v: &SVector<f64, 6>| tri_psi(e.as_ref(), &rest, &unflat2(v));
+            let psi_x = |v: &SVector<f64, 6>| element_psi(e.as_ref(), &rest, &unflat2(v));
             let g_fd = fd_gradient(psi_x, &flat2(&x), scale);
             let eg = (raw.grad - g_fd).amax() / raw.grad.amax().max(1.0);
             assert!(eg < GRAD_TOL, "{label}: element gradient error {eg:e}");
@@ -351,8 +352,8 @@ fn tri_kernels_match_differences_and_dense_chain_rule() {
                 Filter::ClampEps(1e-4),
                 Filter::Abs,
             ] {
-                let dense = b.transpose() * hessian_f2(&svd, &s, fl) * b * rest.area;
-                let got = tri_eval(e.as_ref(), &rest, &x, fl, true);
+                let dense = b.transpose() * hessian_f(&svd, &s, fl) * b * rest.measure;
+                let got = element_eval(e.as_ref(), &rest, &x, fl, true);
                 let err = (got.hess - dense).amax() / dense.amax().max(1.0);
                 assert!(err < CHAIN_TOL, "{label}: {fl:?} chain rule error {err:e}");
                 assert_eq!(got.hess, got.hess.transpose());
@@ -369,19 +370,22 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
         [0.0, 1.0, 0.0],
         [0.0, 0.0, 1.0],
     ];
-    let rest = TetRest::new(p).unwrap();
+    let rest = Rest::<3>::new(p).unwrap();
     // Flattened tet: det F = 0 → SD is +∞, with zero gradient/Hessian.
     let flat = [p[0], p[1], p[2], [0.3, 0.3, 0.0]];
-    let ev = tet_eval(&SymmetricDirichlet, &rest, &flat, Filter::Clamp, true);
+    let ev = element_eval(&SymmetricDirichlet, &rest, &flat, Filter::Clamp, true);
     assert_eq!(ev.psi, f64::INFINITY);
     assert!(ev.grad.iter().all(|v| *v == 0.0) && ev.hess.iter().all(|v| *v == 0.0));
-    assert_eq!(tet_psi(&SymmetricDirichlet, &rest, &flat), f64::INFINITY);
+    assert_eq!(
+        element_psi(&SymmetricDirichlet, &rest, &flat),
+        f64::INFINITY
+    );
     // ARAP exactly on its twist pole (σ = (1.2, 0.9, −0.9)): raw Hessian has an
     // infinite mode, every filtered Hessian is finite, symmetric and PSD.
     let f = Matrix3::from_diagonal(&nalgebra::Vector3::new(1.2, 0.9, -0.9));
     let x = deform3(&p, &f, [0.0; 3]);
     for fl in [Filter::Clamp, Filter::ClampEps(1e-6), Filter::Abs] {
-        let ev = tet_eval(&Arap, &rest, &x, fl, true);
+        let ev = element_eval(&Arap, &rest, &x, fl, true);
         assert!(ev.psi.is_finite());
         assert!(ev.hess.iter().all(|v| v.is_finite()), "{fl:?}: {}", ev.hess);
         assert_eq!(ev.hess, ev.hess.transpose());
@@ -393,7 +397,7 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
             "{fl:?}: min eigenvalue {min:e}"
         );
     }
-    let raw = tet_eval(&Arap, &rest, &x, Filter::None, true);
+    let raw = element_eval(&Arap, &rest, &x, Filter::None, true);
     let big = raw.hess.iter().any(|v| !v.is_finite()) || raw.hess.amax() > 1e10;
     assert!(big, "the raw Hessian is genuinely singular there");
     // With σ exactly on the pole the raw mode is −∞, filtered ones finite.
@@ -405,12 +409,12 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
     let s = Arap.spectral(&svd.sigma);
     assert_eq!(s.twist[0], f64::NEG_INFINITY);
     assert!(
-        hessian_f3(&svd, &s, Filter::None)
+        hessian_f(&svd, &s, Filter::None)
             .iter()
             .any(|v| !v.is_finite())
     );
     for fl in [Filter::Clamp, Filter::ClampEps(1e-6), Filter::Abs] {
-        let h = hessian_f3(&svd, &s, fl);
+        let h = hessian_f(&svd, &s, fl);
         assert!(h.iter().all(|v| v.is_finite()), "{fl:?}");
         assert!(
             SymmetricEigen::new(h).eigenvalues.min() >= fl.floor() - 1e-12,
@@ -420,7 +424,7 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
     // NaN / ∞ positions: ψ = NaN, zero derivatives, no panic.
     let mut bad = p;
     bad[1][2] = f64::NAN;
-    let ev = tet_eval(
+    let ev = element_eval(
         &StableNeoHookean::new(1.0, 1.0),
         &rest,
         &bad,
@@ -429,11 +433,15 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
     );
     assert!(ev.psi.is_nan());
     assert!(ev.grad.iter().all(|v| *v == 0.0) && ev.hess.iter().all(|v| *v == 0.0));
-    assert!(tet_psi(&Arap, &rest, &bad).is_nan());
+    assert!(element_psi(&Arap, &rest, &bad).is_nan());
     bad[1][2] = f64::INFINITY;
-    assert!(tet_eval(&Arap, &rest, &bad, Filter::Abs, true).psi.is_nan());
-    let t = TriRest::from_2d([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]).unwrap();
-    let ev = tri_eval(
+    assert!(
+        element_eval(&Arap, &rest, &bad, Filter::Abs, true)
+            .psi
+            .is_nan()
+    );
+    let t = Rest::<2>::new([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]).unwrap();
+    let ev = element_eval(
         &SymmetricDirichlet,
         &t,
         &[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]],
@@ -442,7 +450,7 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
     );
     assert_eq!(ev.psi, f64::INFINITY);
     assert_eq!(
-        tri_psi(
+        element_psi(
             &SymmetricDirichlet,
             &t,
             &[[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]
@@ -450,7 +458,7 @@ fn singular_and_bad_input_never_leak_nan_into_filtered_output() {
         f64::INFINITY
     );
     assert!(
-        tri_eval(
+        element_eval(
             &Arap,
             &t,
             &[[f64::NAN, 0.0], [1.0, 0.0], [0.0, 1.0]],

@@ -11,13 +11,8 @@ mod common;
 use common::energies::*;
 use common::*;
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
-use ecc_runtime::reference::{
-    fd_gradient_f2, fd_gradient_f3, fd_hessian_f2, fd_hessian_f3, project_psd_numeric,
-};
-use ecc_runtime::{
-    Energy, Filter, eigen_f2, eigen_f3, gradient_f2, gradient_f3, hessian_f2, hessian_f3,
-    signed_svd2, signed_svd3,
-};
+use ecc_runtime::reference::{fd_gradient_vec, fd_hessian_f, project_psd_numeric};
+use ecc_runtime::{Energy, Filter, eigen_f, gradient_f, hessian_f, signed_svd2, signed_svd3};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, SymmetricEigen};
 
 /// Gradient vs central differences, relative to max(1, ‖g‖∞). The differences
@@ -55,13 +50,13 @@ fn eval3(e: &dyn Energy<3>, f: &Matrix3<f64>, fd: bool) -> Option<Point> {
     if !s.psi.is_finite() {
         return None;
     }
-    let h = hessian_f3(&svd, &s, Filter::None);
-    let (vals, vecs) = eigen_f3(&svd, &s);
+    let h = hessian_f(&svd, &s, Filter::None);
+    let (vals, vecs) = eigen_f(&svd, &s);
     Some(Point {
-        g: DVector::from_column_slice(gradient_f3(&svd, &s).as_slice()),
-        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f3(e, f).as_slice())),
+        g: DVector::from_column_slice(gradient_f(&svd, &s).as_slice()),
+        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_vec(e, f).as_slice())),
         h: dynm(&h),
-        h_fd: fd.then(|| dynm(&fd_hessian_f3(e, f))),
+        h_fd: fd.then(|| dynm(&fd_hessian_f(e, f))),
         vals: vals.to_vec(),
         vecs: vecs
             .iter()
@@ -72,7 +67,7 @@ fn eval3(e: &dyn Energy<3>, f: &Matrix3<f64>, fd: bool) -> Option<Point> {
             .map(|&fl| {
                 (
                     fl,
-                    dynm(&hessian_f3(&svd, &s, fl)),
+                    dynm(&hessian_f(&svd, &s, fl)),
                     dynm(&project_psd_numeric(&h, fl)),
                 )
             })
@@ -86,13 +81,13 @@ fn eval2(e: &dyn Energy<2>, f: &Matrix2<f64>, fd: bool) -> Option<Point> {
     if !s.psi.is_finite() {
         return None;
     }
-    let h = hessian_f2(&svd, &s, Filter::None);
-    let (vals, vecs) = eigen_f2(&svd, &s);
+    let h = hessian_f(&svd, &s, Filter::None);
+    let (vals, vecs) = eigen_f(&svd, &s);
     Some(Point {
-        g: DVector::from_column_slice(gradient_f2(&svd, &s).as_slice()),
-        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f2(e, f).as_slice())),
+        g: DVector::from_column_slice(gradient_f(&svd, &s).as_slice()),
+        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_vec(e, f).as_slice())),
         h: dynm(&h),
-        h_fd: fd.then(|| dynm(&fd_hessian_f2(e, f))),
+        h_fd: fd.then(|| dynm(&fd_hessian_f(e, f))),
         vals: vals.to_vec(),
         vecs: vecs
             .iter()
@@ -103,7 +98,7 @@ fn eval2(e: &dyn Energy<2>, f: &Matrix2<f64>, fd: bool) -> Option<Point> {
             .map(|&fl| {
                 (
                     fl,
-                    dynm(&hessian_f2(&svd, &s, fl)),
+                    dynm(&hessian_f(&svd, &s, fl)),
                     dynm(&project_psd_numeric(&h, fl)),
                 )
             })

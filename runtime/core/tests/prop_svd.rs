@@ -16,7 +16,7 @@
 //! (`prop_svd.proptest-regressions`, committed, replayed first).
 
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
-use ecc_runtime::{Energy, Filter, TetRest, signed_svd2, signed_svd3, tet_eval};
+use ecc_runtime::{Energy, Filter, Rest, element_eval, signed_svd2, signed_svd3};
 use nalgebra::{DMatrix, Matrix2, Matrix3, Quaternion, SymmetricEigen, UnitQuaternion};
 use proptest::prelude::*;
 
@@ -117,7 +117,7 @@ proptest! {
         t in prop::array::uniform3(-5.0f64..5.0),
     ) {
         let rest = [[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        let rest = TetRest::new(rest).unwrap();
+        let rest = Rest::<3>::new(rest).unwrap();
         let moved: [[f64; 3]; 4] = x.map(|p| {
             let q = r * nalgebra::Vector3::from(p);
             [q[0] + t[0], q[1] + t[1], q[2] + t[2]]
@@ -128,8 +128,8 @@ proptest! {
             ("snh", &StableNeoHookean::new(1.0, 10.0)),
         ];
         for (name, e) in energies {
-            let a = tet_eval(e, &rest, &x, Filter::Clamp, true);
-            let b = tet_eval(e, &rest, &moved, Filter::Clamp, true);
+            let a = element_eval(e, &rest, &x, Filter::Clamp, true);
+            let b = element_eval(e, &rest, &moved, Filter::Clamp, true);
             prop_assert!(!a.psi.is_nan(), "{name}");
             if !a.psi.is_finite() {
                 prop_assert_eq!(b.psi, a.psi, "{}", name);
@@ -138,7 +138,7 @@ proptest! {
             // σ carries ≈ ε‖F‖ absolute error, so Ψ and its gradient (which
             // may go like σmin⁻²…σmin⁻³ near a barrier) carry ≈ κ³ε relative,
             // κ = σmax/σmin
-            let sv = signed_svd3(&ecc_runtime::tet_f(&rest, &x)).sigma;
+            let sv = signed_svd3(&ecc_runtime::element_f(&rest, &x)).sigma;
             let kappa = (sv[0] / sv[2].abs()).clamp(1.0, 1e4);
             let tol = 1e-12 * kappa * kappa * kappa;
             let scale = a.psi.abs().max(1.0);
@@ -150,7 +150,7 @@ proptest! {
                 prop_assert!((r * ga - gb).amax() <= 10.0 * tol * gs, "{name}: gradient does not rotate");
             }
             for fl in [Filter::Clamp, Filter::Abs, Filter::ClampEps(1e-3)] {
-                let h = tet_eval(e, &rest, &moved, fl, true).hess;
+                let h = element_eval(e, &rest, &moved, fl, true).hess;
                 prop_assert!(h.iter().all(|v| v.is_finite()), "{name} {fl:?}");
                 prop_assert!(h == h.transpose(), "{name} {fl:?} not symmetric");
                 let min = SymmetricEigen::new(DMatrix::from_column_slice(12, 12, h.as_slice()))

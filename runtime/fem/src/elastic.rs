@@ -1,10 +1,11 @@
 //! The elastic / distortion term: E = Σ_q |q| Ψ(F_q) over triangles or tets.
 //!
-//! F_q = Ds(x) Dm⁻¹ with the rest data from the runtime ([`TriRest`],
-//! [`TetRest`]); the element energy, node-major gradient and PSD-filtered
-//! Hessian come from `ecc_runtime::{tri_eval, tet_eval}` (already weighted
-//! by |q|), the cheap line-search value from `tri_psi` / `tet_psi` (SVD-free
-//! when the energy supports it). For barrier energies (`info().barrier`)
+//! F_q = Ds(x) Dm⁻¹ with the rest data from the runtime ([`Rest`]); the
+//! element energy, node-major gradient and PSD-filtered Hessian come from
+//! `ecc_runtime::element_eval` (already weighted by |q|), the cheap
+//! line-search value from `element_psi` (SVD-free when the energy supports
+//! it). One [`Term`] impl serves both dimensions; [`Simplex`] holds the only
+//! per-simplex piece, the degree of det Ds(x + α dx) in α. For barrier energies (`info().barrier`)
 //! [`Term::max_step`] returns the first root of det Ds(x + α dx) = 0 in
 //! (0, 2] (quadratic in 2D, cubic in 3D, see [`crate::roots`]); det Dm > 0
 //! for every rest element, so det F and det Ds vanish together. For barrier
@@ -22,9 +23,8 @@
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-use ecc_runtime::{
-    Energy, Filter, RestError, TetRest, TriRest, tet_eval, tet_psi, tri_eval, tri_psi,
-};
+use ecc_runtime::{Dim, Energy, Filter, Nodes, Rest, RestError, Space, element_eval, element_psi};
+use nalgebra::SMatrix;
 
 use crate::error::FemError;
 use crate::roots::{first_nonpositive, tet_det_poly, tri_det_poly};
@@ -41,22 +41,40 @@ pub struct Tri;
 #[derive(Clone, Copy, Debug)]
 pub struct Tet;
 
-/// Element kinds: the rest data type per simplex.
+/// Element kinds: the rest data and the inversion-free step bound per simplex.
 pub trait Simplex: Send + Sync + 'static {
-    /// Rest data (Dm⁻¹ and measure).
+    /// Rest data (Dm⁻¹ and measure): `Rest<d>`.
     type Rest: Copy + Send + Sync + std::fmt::Debug;
-    /// Vertices per element.
+    /// Vertices per element (d + 1).
     const NODES: usize;
+    /// The first root α ∈ (0, T] of det Ds(x + α dx) (quadratic in 2D, cubic
+    /// in 3D, see [`crate::roots`]) for node-major positions `p` and steps
+    /// `d`; `None` when there is none.
+    fn first_inversion(p: &[f64], d: &[f64]) -> Option<f64>;
+}
+
+/// Edge k of a node-major simplex: node k minus node 0.
+fn edge<const D: usize>(p: &[f64], k: usize) -> [f64; D] {
+    std::array::from_fn(|i| p[k * D + i] - p[i])
 }
 
 impl Simplex for Tri {
-    type Rest = TriRest;
+    type Rest = Rest<2>;
     const NODES: usize = 3;
+    fn first_inversion(p: &[f64], d: &[f64]) -> Option<f64> {
+        let c = tri_det_poly(edge(p, 1), edge(p, 2), edge(d, 1), edge(d, 2));
+        first_nonpositive(c, STEP_SEARCH_MAX)
+    }
 }
 
 impl Simplex for Tet {
-    type Rest = TetRest;
+    type Rest = Rest<3>;
     const NODES: usize = 4;
+    fn first_inversion(p: &[f64], d: &[f64]) -> Option<f64> {
+        let (p1, p2, p3) = (edge(p, 1), edge(p, 2), edge(p, 3));
+        let c = tet_det_poly(p1, p2, p3, edge(d, 1), edge(d, 2), edge(d, 3));
+        first_nonpositive(c, STEP_SEARCH_MAX)
+    }
 }
 
 /// Σ_q |q| Ψ(F_q) over the elements of one mesh, for any energy `E`.
@@ -67,21 +85,6 @@ pub struct Elastic<E: ?Sized, S: Simplex> {
     rest: Vec<S::Rest>,
     barrier: bool,
     _kind: PhantomData<S>,
-}
-
-/// det Ds of a triangle (same sign as det F: det Dm > 0 for every rest shape).
-#[inline]
-fn tri_det(p: &[[f64; 2]; 3]) -> f64 {
-    (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0])
-}
-
-/// det Ds of a tet (same sign as det F).
-#[inline]
-fn tet_det(p: &[[f64; 3]; 4]) -> f64 {
-    let e = |k: usize| [p[k][0] - p[0][0], p[k][1] - p[0][1], p[k][2] - p[0][2]];
-    let (a, b, c) = (e(1), e(2), e(3));
-    a[0] * (b[1] * c[2] - b[2] * c[1]) - b[0] * (a[1] * c[2] - a[2] * c[1])
-        + c[0] * (a[1] * b[2] - a[2] * b[1])
 }
 
 /// A barrier element at det F ≤ 0: outside the domain (Ψ = +∞, zero derivatives).
@@ -165,7 +168,7 @@ impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
             .iter()
             .enumerate()
             .map(|(q, t)| {
-                TriRest::from_2d([rest[t[0]], rest[t[1]], rest[t[2]]]).map_err(|e| rest_error(q, e))
+                Rest::<2>::new([rest[t[0]], rest[t[1]], rest[t[2]]]).map_err(|e| rest_error(q, e))
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Self::from_rest(energy, tris, r))
@@ -182,34 +185,11 @@ impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
             .iter()
             .enumerate()
             .map(|(q, t)| {
-                TriRest::from_3d([rest[t[0]], rest[t[1]], rest[t[2]]]).map_err(|e| rest_error(q, e))
+                Rest::<2>::from_3d([rest[t[0]], rest[t[1]], rest[t[2]]])
+                    .map_err(|e| rest_error(q, e))
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Self::from_rest(energy, tris, r))
-    }
-
-    /// From precomputed rest data (one per triangle; indices are checked by the solver).
-    pub fn from_rest(energy: Arc<E>, tris: &[[usize; 3]], rest: Vec<TriRest>) -> Self {
-        let barrier = energy.info().barrier;
-        Elastic {
-            name: "elastic".into(),
-            energy,
-            elements: tris.as_flattened().to_vec(),
-            rest,
-            barrier,
-            _kind: PhantomData,
-        }
-    }
-
-    /// Σ|q| (total rest area).
-    pub fn total_measure(&self) -> f64 {
-        self.rest.iter().map(|r| r.area).sum()
-    }
-
-    #[inline]
-    fn nodes(&self, s: usize, x: &[[f64; 2]]) -> [[f64; 2]; 3] {
-        let e = &self.elements[3 * s..3 * s + 3];
-        [x[e[0]], x[e[1]], x[e[2]]]
     }
 }
 
@@ -221,45 +201,71 @@ impl<E: Energy<3> + ?Sized> Elastic<E, Tet> {
             .iter()
             .enumerate()
             .map(|(q, t)| {
-                TetRest::new([rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]]])
+                Rest::<3>::new([rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]]])
                     .map_err(|e| rest_error(q, e))
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Self::from_rest(energy, tets, r))
     }
+}
 
-    /// From precomputed rest data (one per tet).
-    pub fn from_rest(energy: Arc<E>, tets: &[[usize; 4]], rest: Vec<TetRest>) -> Self {
+impl<E, S, const D: usize> Elastic<E, S>
+where
+    E: Energy<D> + ?Sized,
+    S: Simplex<Rest = Rest<D>>,
+    Space<D>: Dim<D>,
+{
+    /// From precomputed rest data (one per element; indices are checked by the solver).
+    pub fn from_rest<const K: usize>(
+        energy: Arc<E>,
+        elements: &[[usize; K]],
+        rest: Vec<Rest<D>>,
+    ) -> Self {
+        debug_assert_eq!(K, S::NODES);
         let barrier = energy.info().barrier;
         Elastic {
             name: "elastic".into(),
             energy,
-            elements: tets.as_flattened().to_vec(),
+            elements: elements.as_flattened().to_vec(),
             rest,
             barrier,
             _kind: PhantomData,
         }
     }
 
-    /// Σ|q| (total rest volume).
+    /// Σ|q| (total rest area or volume).
     pub fn total_measure(&self) -> f64 {
-        self.rest.iter().map(|r| r.volume).sum()
+        self.rest.iter().map(|r| r.measure).sum()
     }
 
     #[inline]
-    fn nodes(&self, s: usize, x: &[[f64; 3]]) -> [[f64; 3]; 4] {
-        let e = &self.elements[4 * s..4 * s + 4];
-        [x[e[0]], x[e[1]], x[e[2]], x[e[3]]]
+    fn nodes(&self, s: usize, x: &[[f64; D]]) -> Nodes<D> {
+        let k = S::NODES;
+        <Space<D> as Dim<D>>::gather(x, &self.elements[k * s..k * s + k])
+    }
+
+    /// det F > 0, decided by det Ds (det Dm > 0 for every rest element, so
+    /// det Ds has the sign of det F).
+    #[inline]
+    fn inside(p: &Nodes<D>) -> bool {
+        let p = p.as_ref();
+        let ds = SMatrix::<f64, D, D>::from_fn(|i, j| p[j + 1][i] - p[0][i]);
+        <Space<D> as Dim<D>>::det(&ds) > 0.0
     }
 }
 
-impl<E: Energy<2> + ?Sized + 'static> Term<2> for Elastic<E, Tri> {
+impl<E, S, const D: usize> Term<D> for Elastic<E, S>
+where
+    E: Energy<D> + ?Sized + 'static,
+    S: Simplex<Rest = Rest<D>>,
+    Space<D>: Dim<D>,
+{
     fn name(&self) -> &str {
         &self.name
     }
 
     fn arity(&self) -> usize {
-        3
+        S::NODES
     }
 
     fn stencils(&self) -> &[usize] {
@@ -270,106 +276,43 @@ impl<E: Energy<2> + ?Sized + 'static> Term<2> for Elastic<E, Tri> {
         self.barrier
     }
 
-    fn value(&self, s: usize, x: &[[f64; 2]]) -> f64 {
+    fn value(&self, s: usize, x: &[[f64; D]]) -> f64 {
         let p = self.nodes(s, x);
-        if self.barrier && !tri_det(&p).gt(&0.0) {
+        if self.barrier && !Self::inside(&p) {
             return f64::INFINITY;
         }
-        tri_psi(&*self.energy, &self.rest[s], &p)
+        element_psi(&*self.energy, &self.rest[s], &p)
     }
 
     fn evaluate(
         &self,
         s: usize,
-        x: &[[f64; 2]],
+        x: &[[f64; D]],
         filter: Filter,
         grad: &mut [f64],
         hess: Option<&mut [f64]>,
     ) -> f64 {
         let p = self.nodes(s, x);
-        if self.barrier && !tri_det(&p).gt(&0.0) {
+        if self.barrier && !Self::inside(&p) {
             return outside(grad, hess);
         }
-        let ev = tri_eval(&*self.energy, &self.rest[s], &p, filter, hess.is_some());
-        grad.copy_from_slice(ev.grad.as_slice());
+        let ev = element_eval(&*self.energy, &self.rest[s], &p, filter, hess.is_some());
+        let n = D * S::NODES;
+        for (i, g) in grad.iter_mut().enumerate().take(n) {
+            *g = ev.grad[i];
+        }
         if let Some(h) = hess {
             // symmetric: column-major storage equals row-major
-            h.copy_from_slice(ev.hess.as_slice());
+            for (k, v) in h.iter_mut().enumerate().take(n * n) {
+                *v = ev.hess[(k % n, k / n)];
+            }
         }
         ev.psi
     }
 
-    fn max_step(&self, s: usize, x: &[[f64; 2]], dx: &[[f64; 2]]) -> f64 {
-        let p = self.nodes(s, x);
-        let d = self.nodes(s, dx);
-        let sub = |a: [f64; 2], b: [f64; 2]| [a[0] - b[0], a[1] - b[1]];
-        let c = tri_det_poly(
-            sub(p[1], p[0]),
-            sub(p[2], p[0]),
-            sub(d[1], d[0]),
-            sub(d[2], d[0]),
-        );
-        first_nonpositive(c, STEP_SEARCH_MAX).unwrap_or(f64::INFINITY)
-    }
-}
-
-impl<E: Energy<3> + ?Sized + 'static> Term<3> for Elastic<E, Tet> {
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    fn arity(&self) -> usize {
-        4
-    }
-
-    fn stencils(&self) -> &[usize] {
-        &self.elements
-    }
-
-    fn is_barrier(&self) -> bool {
-        self.barrier
-    }
-
-    fn value(&self, s: usize, x: &[[f64; 3]]) -> f64 {
-        let p = self.nodes(s, x);
-        if self.barrier && !tet_det(&p).gt(&0.0) {
-            return f64::INFINITY;
-        }
-        tet_psi(&*self.energy, &self.rest[s], &p)
-    }
-
-    fn evaluate(
-        &self,
-        s: usize,
-        x: &[[f64; 3]],
-        filter: Filter,
-        grad: &mut [f64],
-        hess: Option<&mut [f64]>,
-    ) -> f64 {
-        let p = self.nodes(s, x);
-        if self.barrier && !tet_det(&p).gt(&0.0) {
-            return outside(grad, hess);
-        }
-        let ev = tet_eval(&*self.energy, &self.rest[s], &p, filter, hess.is_some());
-        grad.copy_from_slice(ev.grad.as_slice());
-        if let Some(h) = hess {
-            h.copy_from_slice(ev.hess.as_slice());
-        }
-        ev.psi
-    }
-
-    fn max_step(&self, s: usize, x: &[[f64; 3]], dx: &[[f64; 3]]) -> f64 {
-        let p = self.nodes(s, x);
-        let d = self.nodes(s, dx);
-        let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-        let c = tet_det_poly(
-            sub(p[1], p[0]),
-            sub(p[2], p[0]),
-            sub(p[3], p[0]),
-            sub(d[1], d[0]),
-            sub(d[2], d[0]),
-            sub(d[3], d[0]),
-        );
-        first_nonpositive(c, STEP_SEARCH_MAX).unwrap_or(f64::INFINITY)
+    fn max_step(&self, s: usize, x: &[[f64; D]], dx: &[[f64; D]]) -> f64 {
+        let (p, d) = (self.nodes(s, x), self.nodes(s, dx));
+        S::first_inversion(p.as_ref().as_flattened(), d.as_ref().as_flattened())
+            .unwrap_or(f64::INFINITY)
     }
 }

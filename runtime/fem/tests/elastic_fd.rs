@@ -8,7 +8,7 @@ use std::sync::Arc;
 use common::{grid, noise, tet_grid};
 use ecc_fem::{Elastic, Filter, NewtonParams, NewtonSolver, Term, Tet, Tri};
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
-use ecc_runtime::{Energy, tet_f, tri_f};
+use ecc_runtime::{Energy, element_f};
 
 fn solver2(rest: &[[f64; 2]], tris: &[[usize; 3]], e: Arc<dyn Energy<2>>) -> NewtonSolver<2> {
     let t: Vec<Box<dyn Term<2>>> =
@@ -58,7 +58,7 @@ fn patch_test_2d() {
             .to_vec();
         // every element sees the same F = A
         for (t, r) in tris.iter().zip(&rests) {
-            let f = tri_f(r, &[x[t[0]], x[t[1]], x[t[2]]]);
+            let f = element_f(r, &[x[t[0]], x[t[1]], x[t[2]]]);
             for i in 0..2 {
                 for j in 0..2 {
                     assert!((f[(i, j)] - a[i][j]).abs() < 1e-12);
@@ -115,7 +115,7 @@ fn patch_test_3d() {
     });
     let el = Elastic::<_, Tet>::new(e.clone(), &rest, &tets).unwrap();
     for (t, r) in tets.iter().zip(el.rest()) {
-        let f = tet_f(r, &[x[t[0]], x[t[1]], x[t[2]], x[t[3]]]);
+        let f = element_f(r, &[x[t[0]], x[t[1]], x[t[2]], x[t[3]]]);
         for i in 0..3 {
             for j in 0..3 {
                 assert!((f[(i, j)] - a[i][j]).abs() < 1e-12);

@@ -20,10 +20,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use ecc_runtime::reference::project_psd_numeric;
-use ecc_runtime::{
-    Energy, Filter, ScaleBlock, gradient_f2, gradient_f3, hessian_f2, hessian_f3, signed_svd2,
-    signed_svd3,
-};
+use ecc_runtime::{Energy, Filter, ScaleBlock, gradient_f, hessian_f, signed_svd2, signed_svd3};
 use nalgebra::{DMatrix, SMatrix, SymmetricEigen};
 
 use super::energies::Formula;
@@ -73,14 +70,14 @@ pub fn lift3(e: &dyn Energy<3>, f: &SMatrix<f64, 3, 3>) -> Lifted {
         sigma: svd.sigma.to_vec(),
         psi: e.psi(&svd.sigma),
         spectral_nan: spectral_nan(&s),
-        grad: gradient_f3(&svd, &s).as_slice().to_vec(),
-        raw: hessian_f3(&svd, &s, Filter::None)
+        grad: gradient_f(&svd, &s).as_slice().to_vec(),
+        raw: hessian_f(&svd, &s, Filter::None)
             .transpose()
             .as_slice()
             .to_vec(),
         filtered: FILTERS
             .iter()
-            .map(|&fl| (fl, hessian_f3(&svd, &s, fl).transpose().as_slice().to_vec()))
+            .map(|&fl| (fl, hessian_f(&svd, &s, fl).transpose().as_slice().to_vec()))
             .collect(),
     }
 }
@@ -92,14 +89,14 @@ pub fn lift2(e: &dyn Energy<2>, f: &SMatrix<f64, 2, 2>) -> Lifted {
         sigma: svd.sigma.to_vec(),
         psi: e.psi(&svd.sigma),
         spectral_nan: spectral_nan(&s),
-        grad: gradient_f2(&svd, &s).as_slice().to_vec(),
-        raw: hessian_f2(&svd, &s, Filter::None)
+        grad: gradient_f(&svd, &s).as_slice().to_vec(),
+        raw: hessian_f(&svd, &s, Filter::None)
             .transpose()
             .as_slice()
             .to_vec(),
         filtered: FILTERS
             .iter()
-            .map(|&fl| (fl, hessian_f2(&svd, &s, fl).transpose().as_slice().to_vec()))
+            .map(|&fl| (fl, hessian_f(&svd, &s, fl).transpose().as_slice().to_vec()))
             .collect(),
     }
 }

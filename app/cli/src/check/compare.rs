@@ -22,7 +22,8 @@ use ecc_runtime::Energy;
 use ecc_runtime::reference::{fd_gradient_f, fd_hessian_f};
 use nalgebra::{DMatrix, SMatrix, SymmetricEigen};
 
-use crate::point::{Ops, PointOps, evaluate};
+use crate::point::evaluate;
+use ecc_runtime::{Dim, Space};
 
 /// Worst relative errors at one point (`None` = skipped).
 #[derive(Clone, Copy, Debug, Default)]
@@ -67,7 +68,7 @@ pub fn compare<const D: usize>(
     sign_symmetric: bool,
 ) -> Errors
 where
-    Ops: PointOps<D>,
+    Space<D>: Dim<D>,
 {
     let p = evaluate::<D>(e, f);
     if !p.inside_domain() {
@@ -87,14 +88,14 @@ where
     } else {
         let g_fd = fd_gradient_f(e, f);
         let h_fd = fd_hessian_f(e, f);
-        let h_scale = inf_norm(h_fd.iter());
-        let g_scale = inf_norm(g_fd.iter()).max(h_scale * inf_norm(f.iter()));
-        out.gradient = Some(rel_err(&p.gradient, g_fd.as_slice(), g_scale));
         // Both are symmetric; compare entry by entry (row-major vs nalgebra's column-major is the same set).
         let h_fd_rows: Vec<f64> = (0..n)
             .flat_map(|i| (0..n).map(move |j| (i, j)))
             .map(|(i, j)| h_fd[(i, j)])
             .collect();
+        let h_scale = inf_norm(&h_fd_rows);
+        let g_scale = inf_norm(g_fd.iter()).max(h_scale * inf_norm(f.iter()));
+        out.gradient = Some(rel_err(&p.gradient, g_fd.as_slice(), g_scale));
         out.hessian = Some(rel_err(&h_flat, &h_fd_rows, h_scale));
     }
 

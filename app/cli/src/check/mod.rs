@@ -18,9 +18,9 @@ use rand_chacha::ChaCha8Rng;
 use crate::error::CliError;
 use crate::input::parse_params;
 use crate::output::print_stdout;
-use crate::point::{Ops, PointOps};
 use crate::source::{Loaded, load};
 use compare::Errors;
+use ecc_runtime::{Dim, Space};
 
 /// Tolerances (relative, see [`compare`]) for gradient, Hessian, eigenvalues, projection.
 ///
@@ -112,7 +112,7 @@ fn check_dim<const D: usize>(
     args: &CheckArgs,
 ) -> Result<(String, usize), CliError>
 where
-    Ops: PointOps<D>,
+    Space<D>: Dim<D>,
 {
     let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
     let sign_symmetric = loaded

@@ -2,7 +2,8 @@
 //! from F-space derivatives to node-major x-space derivatives.
 
 mod eval;
-mod rest;
+pub(crate) mod rest;
 
-pub use eval::{ElementEval, tet_eval, tet_f, tet_psi, tri_eval, tri_f, tri_psi};
-pub use rest::{DEGENERATE_REL_TOL, RestError, TetRest, TriRest};
+pub(crate) use eval::det;
+pub use eval::{ElementEval, element_eval, element_f, element_psi};
+pub use rest::{DEGENERATE_REL_TOL, Rest, RestError};

@@ -8,7 +8,8 @@
 //! meaningless. Planar triangles and tetrahedra with a negative signed
 //! measure are *inverted*; surface triangles (from 3D points) have no sign.
 
-use nalgebra::{Matrix2, Matrix3};
+use crate::dim::{Dim, Nodes, Space};
+use nalgebra::{Matrix2, Matrix3, SMatrix};
 
 /// Relative tolerance on |det Dm| / L^d below which a rest element is degenerate.
 pub const DEGENERATE_REL_TOL: f64 = 1e-12;
@@ -38,22 +39,39 @@ impl std::fmt::Display for RestError {
 
 impl std::error::Error for RestError {}
 
-/// Rest data of a linear triangle: Dm⁻¹ (2×2) and the rest area.
+/// Rest data of a linear simplex (triangle for D = 2, tetrahedron for D = 3):
+/// Dm⁻¹ (d×d) and the rest measure (area or volume, > 0).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TriRest {
-    /// Inverse of the rest edge matrix Dm = [p1−p0, p2−p0].
-    pub dm_inv: Matrix2<f64>,
-    /// Rest area (> 0).
-    pub area: f64,
+pub struct Rest<const D: usize> {
+    /// Inverse of the rest edge matrix Dm = [p1−p0, …, p_d−p0].
+    pub dm_inv: SMatrix<f64, D, D>,
+    /// Rest measure |q| = |det Dm| / d! (area or volume, > 0).
+    pub measure: f64,
 }
 
-/// Rest data of a linear tetrahedron: Dm⁻¹ (3×3) and the rest volume.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TetRest {
-    /// Inverse of the rest edge matrix Dm = [p1−p0, p2−p0, p3−p0].
-    pub dm_inv: Matrix3<f64>,
-    /// Rest volume (> 0).
-    pub volume: f64,
+impl<const D: usize> Rest<D>
+where
+    Space<D>: Dim<D>,
+{
+    /// Rest data of a planar triangle (D = 2, counter-clockwise = positive
+    /// area) or a tetrahedron (D = 3, positive volume when
+    /// (p1−p0, p2−p0, p3−p0) is right-handed).
+    pub fn new(p: Nodes<D>) -> Result<Self, RestError> {
+        <Space<D> as Dim<D>>::rest(&p)
+    }
+}
+
+/// [`Rest::new`] for a planar triangle.
+pub(crate) fn planar_triangle(p: &[[f64; 2]; 3]) -> Result<Rest<2>, RestError> {
+    let e1 = sub(&p[1], &p[0]);
+    let e2 = sub(&p[2], &p[0]);
+    let dm = Matrix2::new(e1[0], e2[0], e1[1], e2[1]);
+    let det = dm.determinant();
+    check(det, 2.0, longest_edge(p), 2, true)?;
+    Ok(Rest {
+        dm_inv: inverse2(&dm, det),
+        measure: 0.5 * det,
+    })
 }
 
 fn sub<const D: usize>(a: &[f64; D], b: &[f64; D]) -> [f64; D] {
@@ -90,20 +108,7 @@ fn check(det: f64, den: f64, l: f64, d: i32, signed: bool) -> Result<(), RestErr
     Ok(())
 }
 
-impl TriRest {
-    /// Rest data of a planar triangle (counter-clockwise = positive area).
-    pub fn from_2d(p: [[f64; 2]; 3]) -> Result<Self, RestError> {
-        let e1 = sub(&p[1], &p[0]);
-        let e2 = sub(&p[2], &p[0]);
-        let dm = Matrix2::new(e1[0], e2[0], e1[1], e2[1]);
-        let det = dm.determinant();
-        check(det, 2.0, longest_edge(&p), 2, true)?;
-        Ok(TriRest {
-            dm_inv: inverse2(&dm, det),
-            area: 0.5 * det,
-        })
-    }
-
+impl Rest<2> {
     /// Rest data of a surface triangle in 3D, expressed in an isometric 2D
     /// frame: e1 = p1 − p0 maps to (|e1|, 0) and e2 = p2 − p0 to
     /// (e1·e2/|e1|, |e1×e2|/|e1|), so the area is always positive.
@@ -124,38 +129,35 @@ impl TriRest {
             0.0,
             det / l1,
         );
-        Ok(TriRest {
+        Ok(Rest {
             dm_inv: inverse2(&dm, det),
-            area: 0.5 * det,
+            measure: 0.5 * det,
         })
     }
 }
 
-impl TetRest {
-    /// Rest data of a tetrahedron (positive volume when (p1−p0, p2−p0, p3−p0)
-    /// is right-handed).
-    pub fn new(p: [[f64; 3]; 4]) -> Result<Self, RestError> {
-        let e: [[f64; 3]; 3] = std::array::from_fn(|k| sub(&p[k + 1], &p[0]));
-        let dm = Matrix3::from_fn(|i, j| e[j][i]);
-        let det = dm.determinant();
-        check(det, 6.0, longest_edge(&p), 3, true)?;
-        // Cofactor inverse: exact formula, no pivoting needed for a checked det.
-        let inv = Matrix3::new(
-            dm[(1, 1)] * dm[(2, 2)] - dm[(1, 2)] * dm[(2, 1)],
-            dm[(0, 2)] * dm[(2, 1)] - dm[(0, 1)] * dm[(2, 2)],
-            dm[(0, 1)] * dm[(1, 2)] - dm[(0, 2)] * dm[(1, 1)],
-            dm[(1, 2)] * dm[(2, 0)] - dm[(1, 0)] * dm[(2, 2)],
-            dm[(0, 0)] * dm[(2, 2)] - dm[(0, 2)] * dm[(2, 0)],
-            dm[(0, 2)] * dm[(1, 0)] - dm[(0, 0)] * dm[(1, 2)],
-            dm[(1, 0)] * dm[(2, 1)] - dm[(1, 1)] * dm[(2, 0)],
-            dm[(0, 1)] * dm[(2, 0)] - dm[(0, 0)] * dm[(2, 1)],
-            dm[(0, 0)] * dm[(1, 1)] - dm[(0, 1)] * dm[(1, 0)],
-        ) / det;
-        Ok(TetRest {
-            dm_inv: inv,
-            volume: det / 6.0,
-        })
-    }
+/// [`Rest::new`] for a tetrahedron.
+pub(crate) fn tetrahedron(p: &[[f64; 3]; 4]) -> Result<Rest<3>, RestError> {
+    let e: [[f64; 3]; 3] = std::array::from_fn(|k| sub(&p[k + 1], &p[0]));
+    let dm = Matrix3::from_fn(|i, j| e[j][i]);
+    let det = dm.determinant();
+    check(det, 6.0, longest_edge(p), 3, true)?;
+    // Cofactor inverse: exact formula, no pivoting needed for a checked det.
+    let inv = Matrix3::new(
+        dm[(1, 1)] * dm[(2, 2)] - dm[(1, 2)] * dm[(2, 1)],
+        dm[(0, 2)] * dm[(2, 1)] - dm[(0, 1)] * dm[(2, 2)],
+        dm[(0, 1)] * dm[(1, 2)] - dm[(0, 2)] * dm[(1, 1)],
+        dm[(1, 2)] * dm[(2, 0)] - dm[(1, 0)] * dm[(2, 2)],
+        dm[(0, 0)] * dm[(2, 2)] - dm[(0, 2)] * dm[(2, 0)],
+        dm[(0, 2)] * dm[(1, 0)] - dm[(0, 0)] * dm[(1, 2)],
+        dm[(1, 0)] * dm[(2, 1)] - dm[(1, 1)] * dm[(2, 0)],
+        dm[(0, 1)] * dm[(2, 0)] - dm[(0, 0)] * dm[(2, 1)],
+        dm[(0, 0)] * dm[(1, 1)] - dm[(0, 1)] * dm[(1, 0)],
+    ) / det;
+    Ok(Rest {
+        dm_inv: inv,
+        measure: det / 6.0,
+    })
 }
 
 fn inverse2(dm: &Matrix2<f64>, det: f64) -> Matrix2<f64> {

@@ -15,9 +15,10 @@
 //! relative for gradients, ≈10⁻⁷ for Hessians, on smooth energies.
 
 use super::psi_f;
+use crate::dim::{Dim, FMat, FVec, Space};
 use crate::energy::Energy;
 use crate::svd::signed_svd;
-use nalgebra::{DMatrix, Matrix4, SMatrix, SVector, Vector4};
+use nalgebra::{SMatrix, SVector};
 
 /// Number of steps on the ladder (the smallest is 0.1·s·2^-LADDER ≈ 10⁻⁹·s).
 pub const LADDER: usize = 27;
@@ -113,14 +114,6 @@ pub fn fd_hessian<const N: usize>(
     h
 }
 
-fn vec_of<const D: usize, const N: usize>(f: &SMatrix<f64, D, D>) -> SVector<f64, N> {
-    SVector::from_fn(|k, _| f[(k % D, k / D)])
-}
-
-fn mat_of<const D: usize, const N: usize>(x: &SVector<f64, N>) -> SMatrix<f64, D, D> {
-    SMatrix::from_fn(|r, c| x[c * D + r])
-}
-
 /// Step scale for differences of Ψ(F): ‖F‖, or for barrier energies the
 /// distance σ_min to the nearest singular matrix when smaller (steps must not
 /// jump across det F = 0, where such energies are singular and, being even in
@@ -156,40 +149,21 @@ pub fn fd_gradient_f<E: Energy<D> + ?Sized, const D: usize>(
     })
 }
 
-/// ∂²Ψ/∂f² (d²×d², column-major vec) by central differences of Ψ(F), for D = 2 or 3.
-pub fn fd_hessian_f<E: Energy<D> + ?Sized, const D: usize>(
+/// vec(∂Ψ/∂F) (column-major, d² entries) by central differences of Ψ(F).
+pub fn fd_gradient_vec<E: Energy<D> + ?Sized, const D: usize>(
     e: &E,
     f: &SMatrix<f64, D, D>,
-) -> DMatrix<f64> {
-    if D == 2 {
-        let x: SVector<f64, 4> = vec_of(f);
-        let h = fd_hessian(|y| psi_f(e, &mat_of::<D, 4>(y)), &x, scale_of(e, f));
-        DMatrix::from_fn(4, 4, |i, j| h[(i, j)])
-    } else {
-        let x: SVector<f64, 9> = vec_of(f);
-        let h = fd_hessian(|y| psi_f(e, &mat_of::<D, 9>(y)), &x, scale_of(e, f));
-        DMatrix::from_fn(9, 9, |i, j| h[(i, j)])
-    }
+) -> FVec<D>
+where
+    Space<D>: Dim<D>,
+{
+    <Space<D> as Dim<D>>::vec(&fd_gradient_f(e, f))
 }
 
-/// vec(∂Ψ/∂F) in 2D by central differences.
-pub fn fd_gradient_f2<E: Energy<2> + ?Sized>(e: &E, f: &SMatrix<f64, 2, 2>) -> Vector4<f64> {
-    vec_of(&fd_gradient_f(e, f))
-}
-
-/// vec(∂Ψ/∂F) in 3D by central differences.
-pub fn fd_gradient_f3<E: Energy<3> + ?Sized>(e: &E, f: &SMatrix<f64, 3, 3>) -> SVector<f64, 9> {
-    vec_of(&fd_gradient_f(e, f))
-}
-
-/// ∂²Ψ/∂f² in 2D by central differences.
-pub fn fd_hessian_f2<E: Energy<2> + ?Sized>(e: &E, f: &SMatrix<f64, 2, 2>) -> Matrix4<f64> {
-    let x: SVector<f64, 4> = vec_of(f);
-    fd_hessian(|y| psi_f(e, &mat_of::<2, 4>(y)), &x, scale_of(e, f))
-}
-
-/// ∂²Ψ/∂f² in 3D by central differences.
-pub fn fd_hessian_f3<E: Energy<3> + ?Sized>(e: &E, f: &SMatrix<f64, 3, 3>) -> SMatrix<f64, 9, 9> {
-    let x: SVector<f64, 9> = vec_of(f);
-    fd_hessian(|y| psi_f(e, &mat_of::<3, 9>(y)), &x, scale_of(e, f))
+/// ∂²Ψ/∂f² (d²×d², column-major vec) by second central differences of Ψ(F).
+pub fn fd_hessian_f<E: Energy<D> + ?Sized, const D: usize>(e: &E, f: &SMatrix<f64, D, D>) -> FMat<D>
+where
+    Space<D>: Dim<D>,
+{
+    <Space<D> as Dim<D>>::fd_hessian_f(&|g| psi_f(e, g), f, scale_of(e, f))
 }

@@ -7,11 +7,9 @@
 
 mod fd;
 
-pub use fd::{
-    fd_gradient, fd_gradient_f, fd_gradient_f2, fd_gradient_f3, fd_hessian, fd_hessian_f,
-    fd_hessian_f2, fd_hessian_f3,
-};
+pub use fd::{fd_gradient, fd_gradient_f, fd_gradient_vec, fd_hessian, fd_hessian_f};
 
+use crate::dim::{Dim, FMat, Space};
 use crate::energy::Energy;
 use crate::filter::Filter;
 use crate::svd::signed_svd;
@@ -58,6 +56,14 @@ where
         }
     }
     SMatrix::from_array_storage(ArrayStorage(out))
+}
+
+/// [`project_psd_numeric`] of a d² × d² F-space Hessian, for d = 2 or 3.
+pub fn project_psd_f<const D: usize>(h: &FMat<D>, filter: Filter) -> FMat<D>
+where
+    Space<D>: Dim<D>,
+{
+    <Space<D> as Dim<D>>::project_psd_numeric(h, filter)
 }
 
 /// Ψ(F) through the signed SVD: `e.psi(σ(F))` (NaN for a non-finite F).
