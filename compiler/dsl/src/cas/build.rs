@@ -309,6 +309,16 @@ impl Graph {
     /// numerators over the lcm of the denominators of its coefficients),
     /// `(g, sum / g)`.
     fn add_content(&mut self, add: Id) -> Option<(BigRational, Id)> {
+        if let Some(known) = self.contents.get(&add) {
+            return known.clone();
+        }
+        let r = self.compute_add_content(add);
+        self.contents.insert(add, r.clone());
+        r
+    }
+
+    /// [`Graph::add_content`], uncached.
+    fn compute_add_content(&mut self, add: Id) -> Option<(BigRational, Id)> {
         let Node::Add(terms) = self.get(add).clone() else {
             return None;
         };

@@ -25,6 +25,9 @@ pub struct Graph {
     masks: Vec<u64>,
     /// Parameter names, by parameter index (for printing).
     params: Vec<String>,
+    /// `add_content` of each sum asked so far (a pure function of the node:
+    /// recomputing it would rebuild the same nodes).
+    pub(super) contents: HashMap<Id, Option<(BigRational, Id)>>,
 }
 
 impl Graph {
@@ -134,20 +137,30 @@ impl Graph {
     }
 
     /// The ids reachable from `roots`, in increasing (topological) order.
+    ///
+    /// O(R log R) for R reached nodes, not O(size of the graph): many small
+    /// sweeps over one big graph stay linear overall.
     pub fn reachable(&self, roots: &[Id]) -> Vec<Id> {
+        self.reachable_except(roots, |_| false)
+    }
+
+    /// The ids reachable from `roots` without passing through a node for
+    /// which `stop` holds (such nodes are neither returned nor entered), in
+    /// increasing (topological) order.
+    pub fn reachable_except(&self, roots: &[Id], stop: impl Fn(Id) -> bool) -> Vec<Id> {
+        // Zeroed allocation: untouched pages of a big graph cost nothing.
         let mut seen = vec![false; self.nodes.len()];
+        let mut out: Vec<Id> = Vec::new();
         let mut stack: Vec<Id> = roots.to_vec();
         while let Some(id) = stack.pop() {
-            if std::mem::replace(&mut seen[id.index()], true) {
+            if std::mem::replace(&mut seen[id.index()], true) || stop(id) {
                 continue;
             }
+            out.push(id);
             stack.extend_from_slice(self.get(id).children());
         }
-        seen.iter()
-            .enumerate()
-            .filter(|(_, s)| **s)
-            .map(|(i, _)| Id(i as u32))
-            .collect()
+        out.sort_unstable();
+        out
     }
 }
 

@@ -54,6 +54,9 @@ pub struct Converter {
     atom_index: HashMap<Atom, usize>,
     memo: HashMap<Id, Option<RatFun>>,
     inv: Option<[Id; 3]>,
+    /// `to_sigma` of every node substituted so far (shared by all calls:
+    /// the derivatives share most of their subexpressions).
+    sigma: HashMap<Id, Id>,
     depth: usize,
 }
 
@@ -69,6 +72,7 @@ impl Converter {
             atom_index: HashMap::new(),
             memo: HashMap::new(),
             inv: None,
+            sigma: HashMap::new(),
             depth: 0,
         }
     }
@@ -107,15 +111,31 @@ impl Converter {
         [i1, i2, i3]
     }
 
-    /// `id` with I1, I2, I3 replaced by their σ-expressions.
+    /// `id` with I1, I2, I3 replaced by their σ-expressions (what
+    /// `Graph::substitute` gives, memoised across calls: only the nodes not
+    /// substituted before are visited).
     pub fn to_sigma(&mut self, g: &mut Graph, id: Id) -> Id {
         let [i1, i2, i3] = self.sigma_invariants(g);
-        g.substitute(id, &|s| match s {
-            Sym::I1 => Some(i1),
-            Sym::I2 => Some(i2),
-            Sym::I3 => Some(i3),
-            _ => None,
-        })
+        let order = g.reachable_except(&[id], |x| self.sigma.contains_key(&x));
+        for x in order {
+            let node = g.get(x).clone();
+            let new = match node {
+                Node::Sym(Sym::I1) => i1,
+                Node::Sym(Sym::I2) => i2,
+                Node::Sym(Sym::I3) => i3,
+                Node::Sym(_) | Node::Num(_) => x,
+                ref n => {
+                    let sigma = &self.sigma;
+                    if n.children().iter().all(|c| sigma[c] == *c) {
+                        x
+                    } else {
+                        g.rebuild(n, &|c| sigma[&c])
+                    }
+                }
+            };
+            self.sigma.insert(x, new);
+        }
+        self.sigma[&id]
     }
 
     fn atom_var(&mut self, a: Atom) -> usize {
