@@ -36,37 +36,12 @@ pub fn print_stdout(text: &str) -> Result<(), CliError> {
     }
 }
 
-/// Write `bytes` to `path` atomically: a temporary file in the same
-/// directory is written, flushed to disk and renamed over `path`, so readers
-/// never see a partial file and a failure leaves any old file untouched.
+/// Write `bytes` to `path` atomically ([`ecc_util::write_atomic`]: a
+/// temporary file in the same directory, flushed, synced and renamed over
+/// `path`, so readers never see a partial file and a failure leaves any old
+/// file untouched).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let file_name = path.file_name().ok_or_else(|| {
-        std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "the path has no file name",
-        )
-    })?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(file_name);
-    tmp_name.push(format!(".{}.tmp", std::process::id()));
-    let tmp = dir.join(tmp_name);
-    let result = (|| {
-        let mut f = std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    ecc_util::write_atomic(path, bytes)
 }
 
 #[cfg(test)]

@@ -72,6 +72,12 @@ pub enum FemError {
     /// A mesh needed for a helper has the wrong topology.
     #[error("mesh topology: {0}")]
     Topology(String),
+    /// No Tutte embedding of the surface (not a disk, not manifold, …).
+    #[error("mesh topology: {0}")]
+    Tutte(#[from] ecc_mesh::TutteError),
+    /// The Tutte start is not a bijection (total signed uv area not positive).
+    #[error("mesh topology: Tutte start has total signed area {0}")]
+    TutteArea(f64),
     /// The sparse Cholesky symbolic analysis failed (out of memory, index overflow).
     #[error("sparse Cholesky symbolic analysis failed: {0}")]
     Symbolic(String),

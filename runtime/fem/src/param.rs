@@ -17,6 +17,7 @@
 //! 5. **Solve.** Projected Newton with no fixed vertex: the translation null
 //!    space is handled by the solver's diagonal shift.
 
+use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -27,7 +28,7 @@ use serde::{Deserialize, Serialize};
 use crate::elastic::{Elastic, Tri};
 use crate::error::FemError;
 use crate::newton::params::NewtonParams;
-use crate::newton::record::{NewtonResult, NewtonStatus, TimeSplit};
+use crate::newton::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
 use crate::newton::solver::NewtonSolver;
 use crate::quality::{count_flipped, tri_signed_area};
 use crate::term::Term;
@@ -116,20 +117,45 @@ impl Parameterization {
     }
 }
 
-/// Parameterise a disk-topology mesh with energy `E` (see the module docs).
-pub fn parameterize<E: Energy<2> + ?Sized + 'static>(
+/// A parameterisation ready to solve: the solver over the (scaled) surface
+/// and the Tutte start (steps 1–4 of the module docs).
+pub struct ParamProblem {
+    /// Projected Newton over the single elastic term `elastic`.
+    pub solver: NewtonSolver<2>,
+    /// The Tutte start, rescaled to the rest area.
+    pub start: Vec<[f64; 2]>,
+    /// The triangles.
+    pub triangles: Vec<[usize; 3]>,
+    /// Factor applied to the 3D positions (1 without normalisation).
+    pub position_scale: f64,
+    /// Σ|q| of the (scaled) rest triangles.
+    pub rest_area: f64,
+    /// Σ|q| of the triangles as given (before normalisation).
+    pub input_area: f64,
+    /// Seconds spent in the Tutte start.
+    pub tutte_seconds: f64,
+    /// Seconds spent building the solver (rest frames, pattern, colouring, symbolic analysis).
+    pub setup_seconds: f64,
+}
+
+/// Build the solver and the Tutte start for `mesh` with energy `E`.
+///
+/// Errors: an empty mesh, a degenerate rest triangle, a mesh that is not a
+/// disk ([`FemError::Tutte`]), or a Tutte start whose total signed area is
+/// not positive ([`FemError::TutteArea`]: the start must be a bijection).
+pub fn prepare<E: Energy<2> + ?Sized + 'static>(
     mesh: &TriMesh,
     energy: Arc<E>,
     opts: &ParamOptions,
-) -> Result<Parameterization, FemError> {
+) -> Result<ParamProblem, FemError> {
     if mesh.triangles.is_empty() {
         return Err(FemError::EmptyMesh);
     }
     let t0 = Instant::now();
     let elastic0 = Elastic::<E, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)?;
-    let area0 = elastic0.total_measure();
+    let input_area = elastic0.total_measure();
     let position_scale = if opts.normalize_area {
-        1.0 / area0.sqrt()
+        1.0 / input_area.sqrt()
     } else {
         1.0
     };
@@ -149,37 +175,75 @@ pub fn parameterize<E: Energy<2> + ?Sized + 'static>(
         newton.energy_scale = 1.0 / rest_area;
     }
     let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(elastic)];
-    let mut solver = NewtonSolver::new(mesh.positions.len(), terms, &[], newton)?;
+    let solver = NewtonSolver::new(mesh.positions.len(), terms, &[], newton)?;
     let setup_seconds = t0.elapsed().as_secs_f64();
 
     let t1 = Instant::now();
-    let mut uv =
-        tutte_embedding(mesh, opts.tutte).map_err(|e| FemError::Topology(e.to_string()))?;
+    let start = tutte_start(mesh, opts.tutte, rest_area)?;
+    Ok(ParamProblem {
+        solver,
+        start,
+        triangles: mesh.triangles.clone(),
+        position_scale,
+        rest_area,
+        input_area,
+        tutte_seconds: t1.elapsed().as_secs_f64(),
+        setup_seconds,
+    })
+}
+
+/// The Tutte embedding scaled so its signed area equals `rest_area`.
+fn tutte_start(
+    mesh: &TriMesh,
+    weights: TutteWeights,
+    rest_area: f64,
+) -> Result<Vec<[f64; 2]>, FemError> {
+    let mut uv = tutte_embedding(mesh, weights)?;
     let uv_area: f64 = mesh
         .triangles
         .iter()
         .map(|&t| tri_signed_area(&uv, t))
         .sum();
     if !(uv_area.is_finite() && uv_area > 0.0) {
-        return Err(FemError::Topology(format!(
-            "Tutte start has total signed area {uv_area}"
-        )));
+        return Err(FemError::TutteArea(uv_area));
     }
     let s = (rest_area / uv_area).sqrt();
     for p in &mut uv {
         *p = [p[0] * s, p[1] * s];
     }
-    let tutte_seconds = t1.elapsed().as_secs_f64();
+    Ok(uv)
+}
 
-    let result = solver.solve(&mut uv)?;
-    let flipped = count_flipped(&uv, &mesh.triangles);
-    Ok(Parameterization {
-        uv,
-        result,
-        flipped,
-        position_scale,
-        rest_area,
-        tutte_seconds,
-        setup_seconds,
-    })
+impl ParamProblem {
+    /// Minimise from the Tutte start; `on_iteration` sees every accepted
+    /// Newton step (record, current uv) and may stop the solve
+    /// (`ControlFlow::Break`, status `Interrupted`). The problem stays
+    /// usable afterwards (e.g. to evaluate its term at the result).
+    pub fn solve_with(
+        &mut self,
+        on_iteration: impl FnMut(&IterationRecord, &[[f64; 2]]) -> ControlFlow<()>,
+    ) -> Result<Parameterization, FemError> {
+        let mut uv = self.start.clone();
+        let result = self.solver.solve_with(&mut uv, on_iteration)?;
+        let flipped = count_flipped(&uv, &self.triangles);
+        Ok(Parameterization {
+            uv,
+            result,
+            flipped,
+            position_scale: self.position_scale,
+            rest_area: self.rest_area,
+            tutte_seconds: self.tutte_seconds,
+            setup_seconds: self.setup_seconds,
+        })
+    }
+}
+
+/// Parameterise a disk-topology mesh with energy `E` (see the module docs):
+/// [`prepare`], then [`ParamProblem::solve_with`] without a callback.
+pub fn parameterize<E: Energy<2> + ?Sized + 'static>(
+    mesh: &TriMesh,
+    energy: Arc<E>,
+    opts: &ParamOptions,
+) -> Result<Parameterization, FemError> {
+    prepare(mesh, energy, opts)?.solve_with(|_, _| ControlFlow::Continue(()))
 }

@@ -11,8 +11,7 @@ use rayon::prelude::*;
 /// Signed area of a planar triangle.
 #[inline]
 pub fn tri_signed_area(x: &[[f64; 2]], t: [usize; 3]) -> f64 {
-    let (a, b, c) = (x[t[0]], x[t[1]], x[t[2]]);
-    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    ecc_mesh::geometry::signed_area_uv(x[t[0]], x[t[1]], x[t[2]])
 }
 
 /// Signed volume of a tet.

@@ -33,10 +33,12 @@ pub(crate) fn norm(a: [f64; 3]) -> f64 {
 
 /// Signed area of the triangle `(a, b, c)` projected to the xy plane.
 pub fn signed_area_2d(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> f64 {
-    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    signed_area_uv([a[0], a[1]], [b[0], b[1]], [c[0], c[1]])
 }
 
-/// Signed area of a triangle given by 2D points (`uv` maps).
+/// Signed area of a triangle given by 2D points: ½ (b − a) × (c − a),
+/// positive for counter-clockwise order. The workspace's one copy of this
+/// formula outside the eigensystem core (which cannot depend on ecc-mesh).
 pub fn signed_area_uv(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
 }

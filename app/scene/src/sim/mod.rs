@@ -1,12 +1,19 @@
-//! Running scenes: building the objective, the frame loop, parameterisation,
+//! Running scenes: the orchestration ([`run`]), the shared context and
+//! report ([`context`]), the frame loop, parameterisation, frame writers,
 //! progress reporting.
 
 pub mod build;
+mod context;
 pub mod engine;
+mod frames;
 pub mod observer;
 mod param;
 mod run;
+mod target;
+mod view;
+mod writers;
 
+pub use context::{FinalState, RunOptions, RunReport, output_folder};
 pub use engine::Engine;
 pub use observer::{FrameLines, Observer, Silent};
-pub use run::{FinalState, RunOptions, RunReport, output_folder, run_scene};
+pub use run::run_scene;

@@ -1,37 +1,31 @@
-//! Surface parameterisation (Smith et al. 2019 §6.1): minimise
-//! Σ_q |q| Ψ(J_q) over uv for a disk-topology surface.
-//!
-//! Each triangle is expressed in its own isometric 2D rest frame, the
-//! surface is scaled to unit total area (energies such as symmetric
-//! Dirichlet are not scale invariant; with unit area the objective is the
-//! area-weighted mean, 2 for an isometry under SD), the start is a Tutte
-//! embedding (uniform or mean-value weights, boundary on a circle, bijective)
-//! rescaled to the same area, and projected Newton runs with no fixed
-//! vertex (the solver's diagonal shift handles the translation null space).
-//! Frame 0 is the Tutte start, frame 1 the result.
+//! Surface parameterisation scenes (Smith et al. 2019 §6.1): minimise
+//! Σ_q |q| Ψ(J_q) over uv for a disk-topology surface with the library's
+//! [`ecc_fem::param`] (isometric rest frames, unit total area, mean energy,
+//! Tutte start rescaled to the same area, projected Newton with no fixed
+//! vertex). This module only adds the scene's side: frame 0 is the Tutte
+//! start, frame 1 the result; the per-iteration callback feeds the progress
+//! observer and the convergence plot; then the summary and pictures.
 
+use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
-use ecc_fem::{Elastic, NewtonSolver, Term, Tri};
-use ecc_mesh::{TriMesh, TutteWeights, tutte_embedding};
+use ecc_fem::param::{ParamOptions, ParamProblem, Parameterization, prepare};
+use ecc_fem::quality::tri_signed_area;
+use ecc_fem::{FemError, NewtonResult, Term};
+use ecc_mesh::{TriMesh, TutteWeights};
 use ecc_runtime::Energy;
 
 use super::build::newton_params;
+use super::context::{Context, FinalState, RunReport, energy_stats, finish, term_stats};
 use super::engine::status_name;
 use super::observer::Observer;
-use super::run::{Context, FinalState, RunReport, energy_stats, finish};
 use crate::counters::Counters;
 use crate::error::SceneError;
 use crate::output::OutputDir;
 use crate::pictures;
 use crate::spec::{FrameFormat, TutteKind};
-use crate::summary::{FrameStats, SolveLog, SolvePoint, Summary, TermStats};
-
-fn signed_area(uv: &[[f64; 2]], t: &[usize; 3]) -> f64 {
-    let (a, b, c) = (uv[t[0]], uv[t[1]], uv[t[2]]);
-    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-}
+use crate::summary::{FrameStats, SolveLog, SolvePoint, Summary};
 
 fn write_uv_frame(
     out: &mut OutputDir,
@@ -55,11 +49,12 @@ fn write_uv_frame(
     Ok(())
 }
 
+/// Energy and orientation of a uv layout.
 fn stats(frame: usize, elastic: &dyn Term<2>, uv: &[[f64; 2]], tris: &[[usize; 3]]) -> FrameStats {
     let e: f64 = (0..elastic.n_stencils())
         .map(|s| elastic.value(s, uv))
         .sum();
-    let areas: Vec<f64> = tris.iter().map(|t| signed_area(uv, t)).collect();
+    let areas: Vec<f64> = tris.iter().map(|&t| tri_signed_area(uv, t)).collect();
     FrameStats {
         frame,
         time: None,
@@ -82,6 +77,100 @@ fn stats(frame: usize, elastic: &dyn Term<2>, uv: &[[f64; 2]], tris: &[[usize; 3
     }
 }
 
+/// The library's problem for the scene: `[solver]`, the Tutte weights; a
+/// surface that cannot be parameterised is an error of the mesh key.
+fn problem(
+    ctx: &Context<'_>,
+    mesh: &TriMesh,
+    energy: Arc<dyn Energy<2>>,
+) -> Result<ParamProblem, SceneError> {
+    let scene = &ctx.file.scene;
+    let opts = ParamOptions {
+        normalize_area: true,
+        mean_energy: true,
+        tutte: match scene.effects.parameterize.as_ref().map(|p| p.tutte) {
+            Some(TutteKind::MeanValue) => TutteWeights::MeanValue,
+            _ => TutteWeights::Uniform,
+        },
+        newton: newton_params(&scene.solver, 1.0),
+    };
+    let key = if scene.mesh.file.is_some() {
+        "mesh.file"
+    } else {
+        "mesh"
+    };
+    prepare(mesh, energy, &opts).map_err(|e| match e {
+        FemError::Tutte(e) => {
+            SceneError::invalid(key, format!("cannot parameterise this mesh: {e}"))
+        }
+        FemError::TutteArea(a) => SceneError::invalid(
+            key,
+            format!("cannot parameterise this mesh: the Tutte start has total signed area {a}"),
+        ),
+        e => SceneError::setup("the parameterisation", e),
+    })
+}
+
+/// Solve, logging every accepted step for the plot (each record at the
+/// time its step began) and the observer.
+fn solve(
+    problem: &mut ParamProblem,
+    obs: &mut dyn Observer,
+) -> Result<(Parameterization, SolveLog), SceneError> {
+    let clock = Instant::now();
+    let mut points = Vec::new();
+    let mut began = 0.0;
+    let p = problem
+        .solve_with(|rec, _| {
+            points.push(SolvePoint {
+                grad_inf: rec.grad_inf,
+                energy: rec.energy,
+                seconds: began,
+            });
+            began = clock.elapsed().as_secs_f64();
+            obs.iteration(1, rec);
+            ControlFlow::Continue(())
+        })
+        .map_err(|e| SceneError::setup("the parameterisation", e))?;
+    let r = &p.result;
+    points.push(SolvePoint {
+        grad_inf: r.grad_inf,
+        energy: r.energy,
+        seconds: began,
+    });
+    let log = SolveLog {
+        frame: 1,
+        status: status_name(&r.status),
+        iterations: r.iterations,
+        points,
+        times: r.times,
+    };
+    Ok((p, log))
+}
+
+/// Frame 1's statistics from the solve.
+fn result_stats(
+    problem: &ParamProblem,
+    r: &NewtonResult,
+    uv: &[[f64; 2]],
+    log: &SolveLog,
+    seconds: f64,
+) -> FrameStats {
+    let mut f1 = stats(
+        1,
+        problem.solver.terms()[0].as_ref(),
+        uv,
+        &problem.triangles,
+    );
+    f1.solves = 1;
+    f1.iterations = r.iterations;
+    f1.statuses = vec![log.status.clone()];
+    f1.converged = r.converged();
+    f1.grad_inf = r.grad_inf;
+    f1.seconds = seconds;
+    f1
+}
+
 /// Run a parameterisation scene.
 pub(crate) fn run_parameterization(
     ctx: &Context<'_>,
@@ -91,160 +180,90 @@ pub(crate) fn run_parameterization(
     obs: &mut dyn Observer,
 ) -> Result<RunReport, SceneError> {
     let file = ctx.file;
-    let setup = |e: ecc_fem::FemError| SceneError::setup("the parameterisation", e);
-    let e0 =
-        Elastic::<dyn Energy<2>, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)
-            .map_err(setup)?;
-    let scale = 1.0 / e0.total_measure().sqrt();
-    let mut scaled = mesh.clone();
-    for p in &mut scaled.positions {
-        *p = p.map(|c| c * scale);
-    }
-    let elastic =
-        Elastic::<dyn Energy<2>, Tri>::surface(energy.clone(), &scaled.positions, &mesh.triangles)
-            .map_err(setup)?
-            .named("elastic");
-    let area = elastic.total_measure();
-    let params = newton_params(&file.scene.solver, 1.0 / area);
-    let tol = params.tol_abs;
-    let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(elastic)];
-    let n = mesh.positions.len();
-    let mut solver = NewtonSolver::new(n, terms, &[], params).map_err(setup)?;
-
-    let weights = match file.scene.effects.parameterize.as_ref().map(|p| p.tutte) {
-        Some(TutteKind::MeanValue) => TutteWeights::MeanValue,
-        _ => TutteWeights::Uniform,
-    };
-    let key = if file.scene.mesh.file.is_some() {
-        "mesh.file"
-    } else {
-        "mesh"
-    };
-    let mut uv = tutte_embedding(mesh, weights)
-        .map_err(|e| SceneError::invalid(key, format!("cannot parameterise this mesh: {e}")))?;
-    let uv_area: f64 = mesh.triangles.iter().map(|t| signed_area(&uv, t)).sum();
-    let s = (area / uv_area).sqrt();
-    for p in &mut uv {
-        *p = [p[0] * s, p[1] * s];
-    }
+    let estats = energy_stats::<2>(energy.as_ref());
+    let mut problem = problem(ctx, mesh, energy)?;
     let setup_seconds = ctx.t0.elapsed().as_secs_f64();
     let formats = ctx.formats();
     let mut output_seconds = 0.0;
-    if let Some(o) = out.as_mut() {
-        let t = Instant::now();
-        write_uv_frame(o, "frame_0000", mesh, &uv, &formats)?;
-        output_seconds += t.elapsed().as_secs_f64();
-    }
-    let tris = mesh.triangles.clone();
-    let mut frames = vec![stats(0, solver.terms()[0].as_ref(), &uv, &tris)];
-    let start = uv.clone();
+    let mut write = |out: &mut Option<OutputDir>, name: &str, uv: &[[f64; 2]]| {
+        if let Some(o) = out.as_mut() {
+            let t = Instant::now();
+            write_uv_frame(o, name, mesh, uv, &formats)?;
+            output_seconds += t.elapsed().as_secs_f64();
+        }
+        Ok::<(), SceneError>(())
+    };
+    write(out, "frame_0000", &problem.start)?;
+    let f0 = stats(
+        0,
+        problem.solver.terms()[0].as_ref(),
+        &problem.start,
+        &problem.triangles,
+    );
 
     obs.start(&file.name(), 1);
-    let clock = Instant::now();
     let t_solve = Instant::now();
-    let mut points = Vec::new();
-    // each record is plotted at the time its step began
-    let mut began = 0.0;
-    let result = solver
-        .solve_with(&mut uv, |rec, _| {
-            points.push(SolvePoint {
-                grad_inf: rec.grad_inf,
-                energy: rec.energy,
-                seconds: began,
-            });
-            began = clock.elapsed().as_secs_f64();
-            obs.iteration(1, rec);
-            std::ops::ControlFlow::Continue(())
-        })
-        .map_err(setup)?;
-    points.push(SolvePoint {
-        grad_inf: result.grad_inf,
-        energy: result.energy,
-        seconds: began,
-    });
-    let log = SolveLog {
-        frame: 1,
-        status: status_name(&result.status),
-        iterations: result.iterations,
-        points,
-        times: result.times,
-    };
-    let mut f1 = stats(1, solver.terms()[0].as_ref(), &uv, &tris);
-    f1.solves = 1;
-    f1.iterations = result.iterations;
-    f1.statuses = vec![log.status.clone()];
-    f1.converged = result.converged();
-    f1.grad_inf = result.grad_inf;
-    f1.seconds = t_solve.elapsed().as_secs_f64();
+    let (p, log) = solve(&mut problem, obs)?;
+    let f1 = result_stats(
+        &problem,
+        &p.result,
+        &p.uv,
+        &log,
+        t_solve.elapsed().as_secs_f64(),
+    );
     obs.frame_done(&f1);
-    frames.push(f1);
-    if let Some(o) = out.as_mut() {
-        let t = Instant::now();
-        write_uv_frame(o, "frame_0001", mesh, &uv, &formats)?;
-        output_seconds += t.elapsed().as_secs_f64();
-    }
+    write(out, "frame_0001", &p.uv)?;
 
-    let t = &result.terms;
-    let terms = solver
-        .terms()
-        .iter()
-        .map(|term| {
-            let timing = t.iter().find(|a| a.name == term.name());
-            TermStats {
-                name: term.name().to_string(),
-                stencils: term.n_stencils(),
-                value_passes: timing.map_or(0, |a| a.value_passes),
-                assembly_passes: timing.map_or(0, |a| a.assembly_passes),
-                seconds: timing.map_or(0.0, |a| a.value_seconds + a.assembly_seconds),
-            }
-        })
-        .collect();
+    let r = &p.result;
     let mut warnings = ctx.loaded.warnings.clone();
-    if !result.converged() {
+    if !r.converged() {
         warnings.push(format!("the solve stopped with {}", log.status));
     }
     let mut summary = Summary {
         scene: file.name(),
         scene_file: file.display.clone(),
         mode: "parameterization".into(),
-        mesh: ctx.mesh_stats(e0.total_measure()),
-        energy: energy_stats::<2>(energy.as_ref()),
+        mesh: ctx.mesh_stats(problem.input_area),
+        energy: estats,
         effects: ctx.effects(),
-        terms,
+        terms: term_stats(problem.solver.terms(), &r.terms),
         counters: Counters::default().values(),
         handles: Vec::new(),
-        newton_iterations: result.iterations,
-        converged_frames: usize::from(result.converged()),
-        frames,
+        newton_iterations: r.iterations,
+        converged_frames: usize::from(r.converged()),
+        frames: vec![f0, f1],
         solves: vec![log],
         stopped: None,
-        final_energy: result.energy,
+        final_energy: r.energy,
         setup_seconds,
-        newton: result.times,
+        newton: r.times,
         output_seconds,
         wall_seconds: 0.0,
         outputs: Vec::new(),
         warnings,
     };
+    let mut scaled = mesh.clone();
+    for q in &mut scaled.positions {
+        *q = q.map(|c| c * problem.position_scale);
+    }
     if let Some(o) = out.as_mut() {
         let t = Instant::now();
         if ctx.pictures_on() {
             obs.note("drawing pictures");
+            let size = ctx.image_size();
             let pic =
-                pictures::parameterization(&scaled, &start, &uv, &summary.scene, ctx.image_size());
+                pictures::parameterization(&scaled, &problem.start, &p.uv, &summary.scene, size);
             o.write("result.png", &pic.to_png())?;
-            let plot =
-                pictures::convergence(&summary.solves, tol, &summary.scene, ctx.image_size());
+            let tol = problem.solver.params.tol_abs;
+            let plot = pictures::convergence(&summary.solves, tol, &summary.scene, size);
             o.write("convergence.png", &plot.to_png())?;
         }
         summary.output_seconds += t.elapsed().as_secs_f64();
     }
     obs.finish();
-    finish(
-        ctx,
-        summary,
-        out,
-        FinalState::Param { mesh: scaled, uv },
-        Vec::new(),
-    )
+    let state = FinalState::Param {
+        mesh: scaled,
+        uv: p.uv,
+    };
+    finish(ctx, summary, out, state, Vec::new())
 }

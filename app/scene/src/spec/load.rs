@@ -134,30 +134,9 @@ pub fn data_dir() -> PathBuf {
     ecc_mesh::data_dir()
 }
 
-/// Levenshtein distance (for "did you mean").
-pub(crate) fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            let sub = prev[j] + usize::from(ca != *cb);
-            cur[j + 1] = sub.min(prev[j + 1] + 1).min(cur[j] + 1);
-        }
-        prev = cur;
-    }
-    prev[b.len()]
-}
-
-/// The closest candidate within a small edit distance.
+/// The closest candidate under the workspace's one rule ([`ecc_util::suggest`]).
 pub(crate) fn suggest<'a>(word: &str, candidates: &[&'a str]) -> Option<&'a str> {
-    let limit = (word.chars().count() / 3).max(2);
-    candidates
-        .iter()
-        .map(|c| (edit_distance(word, c), *c))
-        .filter(|(d, _)| *d <= limit)
-        .min_by_key(|(d, _)| *d)
-        .map(|(_, c)| c)
+    ecc_util::suggest_among(word, candidates.iter().copied())
 }
 
 /// All `` `name` `` items of a serde message.
@@ -268,9 +247,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn edit_distance_and_suggestions() {
-        assert_eq!(edit_distance("gravty", "gravity"), 1);
-        assert_eq!(edit_distance("", "abc"), 3);
+    fn suggestions() {
         assert_eq!(suggest("gravty", &["density", "gravity"]), Some("gravity"));
         assert_eq!(suggest("zzzzzz", &["density", "gravity"]), None);
     }
