@@ -349,6 +349,13 @@ impl<'g> Plan<'g> {
             reads.insert(id, refs);
             bound.push(id);
         }
+        // A binding may read a node merged into an equal one after it was
+        // read (a bound power reused by a later power): read the survivor.
+        for refs in reads.values_mut() {
+            for r in refs.iter_mut() {
+                *r = self.alias.get(r).copied().unwrap_or(*r);
+            }
+        }
         // Depth-first post-order: dependencies first.
         let mut state: HashMap<Id, u8> = HashMap::new();
         let mut order = Vec::with_capacity(bound.len());
@@ -360,6 +367,7 @@ impl<'g> Plan<'g> {
             let mut refs = Vec::new();
             let _ = self.operand(r.id, &mut refs);
             for x in refs {
+                let x = self.alias.get(&x).copied().unwrap_or(x);
                 join_into(&mut self.place, x, &Place::of(r.region));
             }
         }
@@ -380,6 +388,17 @@ impl<'g> Plan<'g> {
                 self.rename.insert(n.clone(), format!("t{k}"));
             }
         }
+        // Text that names a merged node refers to the survivor's final name.
+        let merged: Vec<(String, String)> = self
+            .alias
+            .iter()
+            .filter_map(|(p, first)| {
+                let np = self.names.get(p)?;
+                let nf = self.names.get(first)?;
+                (np != nf).then(|| (np.clone(), self.final_name(nf).to_string()))
+            })
+            .collect();
+        self.rename.extend(merged);
         self.order = order;
     }
 
