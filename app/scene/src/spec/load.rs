@@ -3,7 +3,7 @@
 //!
 //! toml/serde report a message and a byte span; the span is turned into
 //! `line:column` and the message is rewritten with the table and key found
-//! in the text ([`super::locate`]):
+//! in the text from the parser's spans ([`super::spans`]):
 //!
 //! * unknown key → "unknown key `gravty` in [effects]; did you mean `gravity`?"
 //!   (suggestions by edit distance among the keys serde expected);
@@ -15,8 +15,8 @@
 
 use std::path::{Path, PathBuf};
 
-use super::locate::{Outline, line_col};
 use super::model::Scene;
+use super::spans::{Spans, line_col};
 use crate::error::{Location, SceneError};
 
 /// A parsed scene with where it came from (for paths and error positions).
@@ -108,8 +108,7 @@ impl SceneFile {
     /// Where a dotted key is written (best effort: the key's line, else its table's header).
     pub fn position_of(&self, key: &str) -> Option<Location> {
         let text = self.text.as_deref()?;
-        let outline = Outline::new(text);
-        outline.find(text, key).map(|o| line_col(text, o))
+        Spans::new(text).find(key).map(|o| line_col(text, o))
     }
 
     /// Resolve a path written in the scene: `data:NAME` → the data folder
@@ -179,10 +178,9 @@ fn map_toml_error(text: &str, display: &str, e: &toml::de::Error) -> SceneError 
     let raw = e.message().trim().to_string();
     let span = e.span();
     let at = span.as_ref().map(|s| line_col(text, s.start));
-    let outline = Outline::new(text);
     let (table, key) = span
         .as_ref()
-        .map(|s| outline.context(text, s.start))
+        .map(|s| Spans::new(text).context(s.start))
         .unwrap_or_default();
     let message = if let Some(rest) = raw.strip_prefix("unknown field ") {
         let names = backticked(rest);

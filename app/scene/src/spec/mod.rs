@@ -1,8 +1,8 @@
 //! The scene file: data model, reading with located errors, validation.
 
 mod load;
-mod locate;
 mod model;
+mod spans;
 pub mod validate;
 
 pub(crate) use load::suggest as suggest_name;
