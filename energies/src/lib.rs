@@ -21,8 +21,8 @@
 //! | [`Hencky`], [`Hencky2`] | `hencky.psi`, `hencky2.psi` | 3 / 2 | stretch path |
 //! | [`Poly`], [`Poly2`], [`PolyNeg`], [`PolyNeg2`] | `poly*.psi` | 3 / 2 | rational stretch energies (exact divided differences) |
 //!
-//! The registry ([`by_name2`], [`by_name3`], [`names`], [`entry`]) maps the
-//! names scenes use (`energy = "snh"`) to boxed energies.
+//! The registry ([`by_name`]`::<D>`, [`names`], [`entry`]) maps the names
+//! scenes and the CLI use (`energy = "snh"`) to boxed energies.
 //!
 //! ## Doing the same in your own crate (the build.rs helper)
 //!
@@ -66,4 +66,4 @@ mod generated;
 mod registry;
 
 pub use generated::*;
-pub use registry::{ENTRIES, Entry, by_name2, by_name3, entry, names};
+pub use registry::{ENTRIES, Entry, by_name, entry, names};

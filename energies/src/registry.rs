@@ -1,5 +1,7 @@
 //! Look energies up by name (scene files say `energy = "snh"`).
 
+use std::any::Any;
+
 use ecc_runtime::Energy;
 
 use crate::generated::*;
@@ -131,41 +133,46 @@ pub fn entry(name: &str) -> Option<&'static Entry> {
         .find(|e| e.name == key || e.aliases.contains(&key.as_str()))
 }
 
-/// A fresh 2D energy by registry name, with its default parameters.
-pub fn by_name2(name: &str) -> Option<Box<dyn Energy<2>>> {
-    Some(match entry(name)?.name {
-        "arap" => Box::new(Arap::new()),
-        "corotational" => Box::new(CoRotational::new()),
-        "sd" => Box::new(SymmetricDirichlet2::new()),
-        "sarap" => Box::new(Sarap2::new()),
-        "mips" => Box::new(Mips2::new()),
-        "stvk" => Box::new(Stvk::new()),
-        "neohookean" => Box::new(NeoHookean::new()),
-        "snh" => Box::new(StableNeoHookean::new()),
-        "ogden" => Box::new(Ogden2::new()),
-        "hencky" => Box::new(Hencky2::new()),
-        "poly" => Box::new(Poly2::new()),
-        "polyneg" => Box::new(PolyNeg2::new()),
-        _ => return None,
-    })
+/// A constructor of a d-dimensional energy with its default parameters.
+type New<const D: usize> = fn() -> Box<dyn Energy<D>>;
+
+/// `Some(constructor)` of the generated type `$t` (coerced to `dyn Energy<D>`).
+macro_rules! new {
+    ($t:ident) => {
+        Some(|| Box::new($t::new()))
+    };
 }
 
-/// A fresh 3D energy by registry name, with its default parameters.
-pub fn by_name3(name: &str) -> Option<Box<dyn Energy<3>>> {
-    Some(match entry(name)?.name {
-        "arap" => Box::new(Arap::new()),
-        "corotational" => Box::new(CoRotational::new()),
-        "sd" => Box::new(SymmetricDirichlet3::new()),
-        "sarap" => Box::new(Sarap3::new()),
-        "stvk" => Box::new(Stvk::new()),
-        "neohookean" => Box::new(NeoHookean::new()),
-        "snh" => Box::new(StableNeoHookean::new()),
-        "ogden" => Box::new(Ogden::new()),
-        "hencky" => Box::new(Hencky::new()),
-        "poly" => Box::new(Poly::new()),
-        "polyneg" => Box::new(PolyNeg::new()),
+/// The constructors of [`ENTRIES`], in the same order: (2D, 3D).
+const NEW: [(Option<New<2>>, Option<New<3>>); 12] = [
+    (new!(Arap), new!(Arap)),
+    (new!(CoRotational), new!(CoRotational)),
+    (new!(SymmetricDirichlet2), new!(SymmetricDirichlet3)),
+    (new!(Sarap2), new!(Sarap3)),
+    (new!(Mips2), None),
+    (new!(Stvk), new!(Stvk)),
+    (new!(NeoHookean), new!(NeoHookean)),
+    (new!(StableNeoHookean), new!(StableNeoHookean)),
+    (new!(Ogden2), new!(Ogden)),
+    (new!(Hencky2), new!(Hencky)),
+    (new!(Poly2), new!(Poly)),
+    (new!(PolyNeg2), new!(PolyNeg)),
+];
+
+/// A fresh d-dimensional energy (d = `D`, 2 or 3) by registry name or
+/// alias (see [`entry`]), with its default parameters; `None` for an
+/// unknown name, a dimension the energy does not exist in, or another `D`.
+pub fn by_name<const D: usize>(name: &str) -> Option<Box<dyn Energy<D>>> {
+    let key = entry(name)?.name;
+    let (new2, new3) = NEW[ENTRIES.iter().position(|e| e.name == key)?];
+    // Box<dyn Energy<2>> *is* Box<dyn Energy<D>> when D = 2: the downcast
+    // only names that identity for the generic signature.
+    let made: Box<dyn Any> = match D {
+        2 => Box::new(new2?()),
+        3 => Box::new(new3?()),
         _ => return None,
-    })
+    };
+    made.downcast::<Box<dyn Energy<D>>>().ok().map(|b| *b)
 }
 
 #[cfg(test)]
@@ -175,8 +182,8 @@ mod tests {
     #[test]
     fn every_entry_resolves_in_its_dimensions() {
         for e in ENTRIES {
-            assert_eq!(by_name2(e.name).is_some(), e.d2, "{} in 2D", e.name);
-            assert_eq!(by_name3(e.name).is_some(), e.d3, "{} in 3D", e.name);
+            assert_eq!(by_name::<2>(e.name).is_some(), e.d2, "{} in 2D", e.name);
+            assert_eq!(by_name::<3>(e.name).is_some(), e.d3, "{} in 3D", e.name);
             for a in e.aliases {
                 assert_eq!(entry(a).map(|x| x.name), Some(e.name));
             }
@@ -188,7 +195,23 @@ mod tests {
         assert_eq!(entry("Stable-Neo-Hookean").map(|e| e.name), Some("snh"));
         assert_eq!(entry(" SD ").map(|e| e.name), Some("sd"));
         assert!(entry("snhh").is_none());
-        assert!(by_name3("mips").is_none());
+        assert!(by_name::<3>("mips").is_none());
+        assert!(by_name::<4>("snh").is_none());
+    }
+
+    #[test]
+    fn every_constructor_builds_the_named_energy() {
+        assert_eq!(NEW.len(), ENTRIES.len());
+        for e in ENTRIES {
+            for a in std::iter::once(&e.name).chain(e.aliases) {
+                if let Some(x) = by_name::<2>(a) {
+                    assert_eq!(entry(x.name()).map(|y| y.name), Some(e.name), "{a} in 2D");
+                }
+                if let Some(x) = by_name::<3>(a) {
+                    assert_eq!(entry(x.name()).map(|y| y.name), Some(e.name), "{a} in 3D");
+                }
+            }
+        }
     }
 
     #[test]

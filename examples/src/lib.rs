@@ -53,15 +53,12 @@ pub enum Output {
     Folder(PathBuf),
 }
 
-/// The generated energies (`ecc_energies::by_name2/3`) as an [`EnergySource`].
+/// The generated energies (`ecc_energies::by_name::<D>`) as an [`EnergySource`].
 #[derive(Clone, Copy, Debug, Default)]
 pub struct GeneratedEnergies;
 
 impl GeneratedEnergies {
-    fn get<const D: usize>(
-        req: &EnergyRequest<'_>,
-        make: fn(&str) -> Option<Box<dyn Energy<D>>>,
-    ) -> Result<Box<dyn Energy<D>>, EnergyError> {
+    fn get<const D: usize>(req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<D>>, EnergyError> {
         if let Some(p) = req.psi {
             return Err(EnergyError::File(format!(
                 "`{}`: the examples use the built-in energies (run .psi files with `ecc sim`)",
@@ -69,7 +66,7 @@ impl GeneratedEnergies {
             )));
         }
         let name = req.name.unwrap_or_default();
-        let mut e = make(name).ok_or_else(|| EnergyError::UnknownName {
+        let mut e = ecc_energies::by_name::<D>(name).ok_or_else(|| EnergyError::UnknownName {
             name: name.to_string(),
             known: ecc_energies::names()
                 .iter()
@@ -83,11 +80,11 @@ impl GeneratedEnergies {
 
 impl EnergySource for GeneratedEnergies {
     fn energy2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<2>>, EnergyError> {
-        Self::get::<2>(req, ecc_energies::by_name2)
+        Self::get::<2>(req)
     }
 
     fn energy3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<3>>, EnergyError> {
-        Self::get::<3>(req, ecc_energies::by_name3)
+        Self::get::<3>(req)
     }
 
     fn names(&self) -> Vec<String> {

@@ -62,12 +62,9 @@ fn load_error(e: LoadError) -> EnergyError {
 }
 
 impl CliEnergies {
-    fn by_name<const D: usize>(
-        req: &EnergyRequest<'_>,
-        make: fn(&str) -> Option<Box<dyn Energy<D>>>,
-    ) -> Result<Box<dyn Energy<D>>, EnergyError> {
+    fn by_name<const D: usize>(req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<D>>, EnergyError> {
         let name = req.name.unwrap_or_default();
-        let mut e = match make(name) {
+        let mut e = match ecc_energies::by_name::<D>(name) {
             Some(e) => e,
             None => {
                 return Err(match ecc_energies::entry(name) {
@@ -95,14 +92,14 @@ impl EnergySource for CliEnergies {
     fn energy2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<2>>, EnergyError> {
         match req.psi {
             Some(p) => load_psi::<2>(p, req.params).map_err(load_error),
-            None => Self::by_name::<2>(req, ecc_energies::by_name2),
+            None => Self::by_name::<2>(req),
         }
     }
 
     fn energy3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<3>>, EnergyError> {
         match req.psi {
             Some(p) => load_psi::<3>(p, req.params).map_err(load_error),
-            None => Self::by_name::<3>(req, ecc_energies::by_name3),
+            None => Self::by_name::<3>(req),
         }
     }
 

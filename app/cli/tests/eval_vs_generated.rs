@@ -195,11 +195,11 @@ fn ecc_eval_agrees_with_the_generated_energies() {
         let module = ecc_dsl::compile(&src, &name).unwrap();
         for ir in &module.dims {
             if ir.dim == 2 {
-                let e = ecc_energies::by_name2(&name)
+                let e = ecc_energies::by_name::<2>(&name)
                     .unwrap_or_else(|| panic!("no generated 2D {name}"));
                 n += compare::<2>(&name, &path, e.as_ref(), &mut failures);
             } else {
-                let e = ecc_energies::by_name3(&name)
+                let e = ecc_energies::by_name::<3>(&name)
                     .unwrap_or_else(|| panic!("no generated 3D {name}"));
                 n += compare::<3>(&name, &path, e.as_ref(), &mut failures);
             }

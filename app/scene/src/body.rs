@@ -7,28 +7,36 @@ use std::sync::Arc;
 use ecc_fem::{Elastic, FemError, Term, Tet, Tri};
 use ecc_runtime::Energy;
 
-/// Builds `Σ_q |q| Ψ(F_q)` for rest positions and flat simplices.
-pub type ElasticFn<const D: usize> =
-    fn(Arc<dyn Energy<D>>, &[[f64; D]], &[usize]) -> Result<Box<dyn Term<D>>, FemError>;
-
-fn elastic2(
-    e: Arc<dyn Energy<2>>,
-    rest: &[[f64; 2]],
-    el: &[usize],
-) -> Result<Box<dyn Term<2>>, FemError> {
-    let (tris, _) = el.as_chunks::<3>();
-    Ok(Box::new(Elastic::<dyn Energy<2>, Tri>::planar(
-        e, rest, tris,
-    )?))
+/// `x` as a `T` when `T` is its own type (`Arc<dyn Energy<D>>` is
+/// `Arc<dyn Energy<2>>` when D = 2); `None` never happens for the types used here.
+fn same<T: 'static>(x: impl std::any::Any) -> Option<T> {
+    (Box::new(x) as Box<dyn std::any::Any>)
+        .downcast::<T>()
+        .ok()
+        .map(|b| *b)
 }
 
-fn elastic3(
-    e: Arc<dyn Energy<3>>,
-    rest: &[[f64; 3]],
+/// `Σ_q |q| Ψ(F_q)` over the flat simplices `el` at rest positions `rest`:
+/// planar triangles in 2D, tets in 3D (the scene's one choice by dimension).
+fn elastic<const D: usize>(
+    e: Arc<dyn Energy<D>>,
+    rest: &[[f64; D]],
     el: &[usize],
-) -> Result<Box<dyn Term<3>>, FemError> {
-    let (tets, _) = el.as_chunks::<4>();
-    Ok(Box::new(Elastic::<dyn Energy<3>, Tet>::new(e, rest, tets)?))
+) -> Result<Box<dyn Term<D>>, FemError> {
+    let p = rest.as_flattened();
+    let term: Box<dyn std::any::Any> = match D {
+        2 => {
+            let e = same::<Arc<dyn Energy<2>>>(e).expect("D = 2");
+            let t = Elastic::<dyn Energy<2>, Tri>::planar(e, p.as_chunks().0, el.as_chunks().0)?;
+            Box::new(Box::new(t) as Box<dyn Term<2>>)
+        }
+        _ => {
+            let e = same::<Arc<dyn Energy<3>>>(e).expect("D = 3");
+            let t = Elastic::<dyn Energy<3>, Tet>::new(e, p.as_chunks().0, el.as_chunks().0)?;
+            Box::new(Box::new(t) as Box<dyn Term<3>>)
+        }
+    };
+    Ok(*term.downcast::<Box<dyn Term<D>>>().expect("D = 2 or 3"))
 }
 
 /// A body of linear simplices (triangles in 2D, tets in 3D).
@@ -40,7 +48,6 @@ pub struct Body<const D: usize> {
     pub elements: Vec<usize>,
     /// The energy density Ψ.
     pub energy: Arc<dyn Energy<D>>,
-    make: ElasticFn<D>,
 }
 
 impl Body<2> {
@@ -50,7 +57,6 @@ impl Body<2> {
             rest,
             elements: tris.as_flattened().to_vec(),
             energy,
-            make: elastic2,
         }
     }
 }
@@ -62,7 +68,6 @@ impl Body<3> {
             rest,
             elements: tets.as_flattened().to_vec(),
             energy,
-            make: elastic3,
         }
     }
 }
@@ -88,7 +93,7 @@ impl<const D: usize> Body<D> {
 
     /// The elastic term for the given rest positions (same elements).
     pub fn elastic_at(&self, rest: &[[f64; D]]) -> Result<Box<dyn Term<D>>, FemError> {
-        (self.make)(self.energy.clone(), rest, &self.elements)
+        elastic(self.energy.clone(), rest, &self.elements)
     }
 
     /// The elastic term over the body's own rest shape.

@@ -129,11 +129,11 @@ fn cases<const D: usize>() -> Vec<Case<D>> {
 }
 
 fn energy2(stem: &str) -> Box<dyn Energy<2>> {
-    ecc_energies::by_name2(stem).unwrap_or_else(|| panic!("no 2D energy {stem}"))
+    ecc_energies::by_name::<2>(stem).unwrap_or_else(|| panic!("no 2D energy {stem}"))
 }
 
 fn energy3(stem: &str) -> Box<dyn Energy<3>> {
-    ecc_energies::by_name3(stem).unwrap_or_else(|| panic!("no 3D energy {stem}"))
+    ecc_energies::by_name::<3>(stem).unwrap_or_else(|| panic!("no 3D energy {stem}"))
 }
 
 #[test]

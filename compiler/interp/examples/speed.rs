@@ -68,7 +68,7 @@ fn main() {
     ] {
         let it =
             ecc_interp::load_psi::<3>(format!("{dir}/{file}.psi"), &[]).expect("library energy");
-        let generated = ecc_energies::by_name3(reg).expect("generated energy");
+        let generated = ecc_energies::by_name::<3>(reg).expect("generated energy");
         row::<3>(file, it.as_ref(), generated.as_ref(), &p3);
     }
     for (file, reg) in [
@@ -80,7 +80,7 @@ fn main() {
     ] {
         let it =
             ecc_interp::load_psi::<2>(format!("{dir}/{file}.psi"), &[]).expect("library energy");
-        let generated = ecc_energies::by_name2(reg).expect("generated energy");
+        let generated = ecc_energies::by_name::<2>(reg).expect("generated energy");
         row::<2>(file, it.as_ref(), generated.as_ref(), &p2);
     }
 }
