@@ -1,0 +1,113 @@
+//! `simulate(scene.toml, …)`: a scene file run by ecc-scene (as `ecc sim`),
+//! its summary returned as a dict. Energies by name are the standard `.psi`
+//! files evaluated by the interpreter (the numbers of `ecc eval`), `.psi`
+//! paths are loaded with `ecc_interp::load_psi`.
+
+use std::path::PathBuf;
+
+use ecc_fem::IterationRecord;
+use ecc_interp::LoadError;
+use ecc_runtime::{Dim, Energy, Space};
+use ecc_scene::{
+    EnergyError, EnergyRequest, EnergySource, Observer, RunOptions, SceneFile, run_scene,
+};
+use pyo3::prelude::*;
+
+use crate::builtin;
+use crate::errors::scene_error;
+use crate::hook::Hook;
+
+/// The Python package's energy provider for scenes.
+struct PyEnergies;
+
+fn load_error(e: LoadError) -> EnergyError {
+    match e {
+        LoadError::Param { source, .. } => EnergyError::Param(source.to_string()),
+        LoadError::NoSuchDim { .. } => EnergyError::Dimension(e.to_string()),
+        LoadError::Syntax { rendered, .. } => EnergyError::File(format!("\n{}", rendered.trim_end())),
+        other => EnergyError::File(other.to_string()),
+    }
+}
+
+fn provide<const D: usize>(req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<D>>, EnergyError>
+where
+    Space<D>: Dim<D>,
+{
+    if let Some(p) = req.psi {
+        return ecc_interp::load_psi::<D>(p, req.params).map_err(load_error);
+    }
+    let name = req.name.unwrap_or_default();
+    let unknown = || EnergyError::UnknownName {
+        name: name.to_string(),
+        known: PyEnergies.names(),
+    };
+    let canon = builtin::canonical(name).ok_or_else(unknown)?;
+    for stem in builtin::stems(canon, D) {
+        let Some(text) = builtin::file(&stem) else { continue };
+        let file = format!("energies/psi/{stem}.psi");
+        let src = ecc_dsl::load_text(text, &file).map_err(|e| EnergyError::File(e.to_string()))?;
+        if src.module.dim(D as u8).is_some() {
+            let e = ecc_interp::energy_from_module::<D>(&src.module, &file, req.params)
+                .map_err(load_error)?;
+            return Ok(Box::new(e));
+        }
+    }
+    Err(EnergyError::Dimension(format!("`{canon}` has no {D}D version")))
+}
+
+impl EnergySource for PyEnergies {
+    fn energy2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<2>>, EnergyError> {
+        provide::<2>(req)
+    }
+
+    fn energy3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<3>>, EnergyError> {
+        provide::<3>(req)
+    }
+
+    fn names(&self) -> Vec<String> {
+        builtin::names().iter().map(|s| s.to_string()).collect()
+    }
+}
+
+/// Progress and Ctrl-C for scenes: the observer cannot stop a scene, so
+/// the first error (KeyboardInterrupt, or one raised by the callback) is
+/// re-raised when the run returns; later calls are skipped.
+struct PyObserver(Hook);
+
+impl Observer for PyObserver {
+    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) {
+        if self.0.error.is_none() {
+            let _ = self.0.step(rec);
+        }
+    }
+}
+
+/// Low-level scene run (use `ecc.simulate`): returns the summary as JSON text.
+#[pyfunction]
+#[pyo3(signature = (scene, out, frames, pictures, progress))]
+pub fn simulate(
+    py: Python<'_>,
+    scene: PathBuf,
+    out: Option<PathBuf>,
+    frames: Option<usize>,
+    pictures: Option<bool>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<String> {
+    let mut file = SceneFile::read(&scene).map_err(scene_error)?;
+    if let Some(n) = frames {
+        if n == 0 {
+            return Err(scene_error("frames must be at least 1"));
+        }
+        file.scene.frames = Some(n);
+    }
+    let opts = RunOptions {
+        out_dir: out,
+        dry_run: false,
+        pictures,
+    };
+    let mut obs = PyObserver(Hook::new(progress));
+    let report = py.detach(|| run_scene(&file, &PyEnergies, &opts, &mut obs));
+    obs.0.finish()?;
+    let report = report.map_err(scene_error)?;
+    serde_json::to_string(&report.summary).map_err(scene_error)
+}
