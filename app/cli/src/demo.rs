@@ -31,8 +31,7 @@ pub struct DemoArgs {
 
 /// Run the demo with `sim`-style options.
 pub fn run_demo(args: &SimArgs) -> Result<(), CliError> {
-    let file = SceneFile::parse(DEMO_SCENE, "<demo>", ".")
-        .map_err(|e| CliError::Scene(format!("the built-in demo scene is invalid: {e}")))?;
+    let file = SceneFile::parse(DEMO_SCENE, "<demo>", ".").map_err(CliError::DemoScene)?;
     run_file(file, args)
 }
 

@@ -1,9 +1,9 @@
-//! The CLI's error type: every failure becomes one clear message on stderr
+//! The CLI's error type: every failure stays typed (with its source) up to
+//! here and becomes one clear message on stderr, rendered once by `main`,
 //! and a non-zero exit status.
 
-use std::fmt;
-
 use ecc_interp::LoadError;
+use ecc_scene::SceneError;
 
 use crate::input::{MatrixError, ParamArgError};
 
@@ -11,22 +11,30 @@ use crate::input::{MatrixError, ParamArgError};
 pub const EXIT_FAILURE: i32 = 1;
 
 /// Anything that makes a command fail.
-#[derive(Debug)]
+#[derive(Debug, thiserror::Error)]
 pub enum CliError {
-    /// Reading or compiling the energy, a parameter override, a missing dimension.
-    Load(LoadError),
+    /// Reading or compiling the energy, a parameter override, a missing
+    /// dimension. Rendered diagnostics already carry `error:` headers and
+    /// source excerpts.
+    #[error("{}", load_message(.0))]
+    Load(#[from] LoadError),
     /// A malformed `--F`.
-    Matrix(MatrixError),
+    #[error("error: {0}")]
+    Matrix(#[from] MatrixError),
     /// A malformed `--param`.
-    Param(ParamArgError),
+    #[error("error: {0}")]
+    Param(#[from] ParamArgError),
     /// An output file could not be written.
+    #[error("error: cannot write `{path}`: {source}")]
     Write {
         /// The destination.
         path: String,
-        /// The operating system's message.
-        message: String,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
     },
     /// Code generation or the report failed.
+    #[error("error: cannot generate code for `{path}`: {message}")]
     Codegen {
         /// The energy file.
         path: String,
@@ -34,65 +42,68 @@ pub enum CliError {
         message: String,
     },
     /// The command line is incomplete in a way clap cannot express.
+    #[error("error: {0}")]
     Usage(String),
-    /// Standard output could not be written (e.g. a closed pipe).
-    Stdout(String),
+    /// Standard output could not be written (a closed pipe is not an error).
+    #[error("error: cannot write to standard output: {0}")]
+    Stdout(#[source] std::io::Error),
+    /// A JSON document could not be encoded.
+    #[error("error: cannot encode the JSON output: {0}")]
+    Json(#[from] serde_json::Error),
     /// A scene could not be read, built or run (`ecc sim`); the message
     /// names the file, line and key.
-    Scene(String),
+    #[error("error: {0}")]
+    Scene(#[from] SceneError),
+    /// The compiled-in demo scene does not parse (a build defect).
+    #[error("error: the built-in demo scene is invalid: {0}")]
+    DemoScene(#[source] SceneError),
+    /// A scene run stopped before its last frame (the summary says why).
+    #[error("error: the run stopped early: {why}")]
+    Stopped {
+        /// The reason and the frame, as recorded in the summary.
+        why: String,
+    },
     /// `ecc check` found errors above tolerance (the report is already printed).
+    #[error(
+        "error: {failures} check{} exceeded the tolerance (see the table above)",
+        if *failures == 1 { "" } else { "s" }
+    )]
     CheckFailed {
         /// How many checks failed.
         failures: usize,
     },
 }
 
-impl fmt::Display for CliError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            // Rendered diagnostics already carry `error:` headers and source excerpts.
-            CliError::Load(LoadError::Syntax { rendered, .. }) => {
-                write!(f, "{}", rendered.trim_end())
-            }
-            CliError::Load(e) => write!(f, "error: {e}"),
-            CliError::Matrix(e) => write!(f, "error: {e}"),
-            CliError::Param(e) => write!(f, "error: {e}"),
-            CliError::Write { path, message } => {
-                write!(f, "error: cannot write `{path}`: {message}")
-            }
-            CliError::Codegen { path, message } => {
-                write!(f, "error: cannot generate code for `{path}`: {message}")
-            }
-            CliError::Usage(message) => write!(f, "error: {message}"),
-            CliError::Scene(message) => write!(f, "error: {message}"),
-            CliError::Stdout(message) => {
-                write!(f, "error: cannot write to standard output: {message}")
-            }
-            CliError::CheckFailed { failures } => write!(
-                f,
-                "error: {failures} check{} exceeded the tolerance (see the table above)",
-                if *failures == 1 { "" } else { "s" }
-            ),
-        }
+/// A load error as shown: rendered diagnostics as they are, the rest
+/// behind `error: `.
+fn load_message(e: &LoadError) -> String {
+    match e {
+        LoadError::Syntax { rendered, .. } => rendered.trim_end().to_string(),
+        e => format!("error: {e}"),
     }
 }
 
-impl std::error::Error for CliError {}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-impl From<LoadError> for CliError {
-    fn from(e: LoadError) -> Self {
-        CliError::Load(e)
-    }
-}
-
-impl From<MatrixError> for CliError {
-    fn from(e: MatrixError) -> Self {
-        CliError::Matrix(e)
-    }
-}
-
-impl From<ParamArgError> for CliError {
-    fn from(e: ParamArgError) -> Self {
-        CliError::Param(e)
+    #[test]
+    fn messages_and_sources() {
+        let e = CliError::Write {
+            path: "out.rs".into(),
+            source: std::io::Error::other("disk full"),
+        };
+        assert_eq!(e.to_string(), "error: cannot write `out.rs`: disk full");
+        assert!(std::error::Error::source(&e).is_some());
+        let e = CliError::CheckFailed { failures: 1 };
+        assert_eq!(
+            e.to_string(),
+            "error: 1 check exceeded the tolerance (see the table above)"
+        );
+        let e = CliError::Load(LoadError::Syntax {
+            path: "a.psi".into(),
+            rendered: "error: x\n".into(),
+        });
+        assert_eq!(e.to_string(), "error: x");
     }
 }

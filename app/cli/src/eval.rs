@@ -119,7 +119,7 @@ fn to_json(meta: &Meta, p: &PointEval) -> Result<String, CliError> {
         params: &meta.params,
         f: meta.f,
     };
-    crate::eval_json::render(&meta, p).map_err(|e| CliError::Stdout(e.to_string()))
+    Ok(crate::eval_json::render(&meta, p)?)
 }
 
 fn fmt_num(x: f64) -> String {

@@ -8,9 +8,9 @@ use crate::error::CliError;
 /// Print `text` to standard output, or write it to `path` atomically.
 pub fn emit(path: Option<&Path>, text: &str) -> Result<(), CliError> {
     match path {
-        Some(p) => write_atomic(p, text.as_bytes()).map_err(|e| CliError::Write {
+        Some(p) => write_atomic(p, text.as_bytes()).map_err(|source| CliError::Write {
             path: p.display().to_string(),
-            message: e.to_string(),
+            source,
         }),
         None => print_stdout(text),
     }
@@ -32,7 +32,7 @@ pub fn print_stdout(text: &str) -> Result<(), CliError> {
     });
     match res.and_then(|_| out.flush()) {
         Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
-        r => r.map_err(|e| CliError::Stdout(e.to_string())),
+        r => r.map_err(CliError::Stdout),
     }
 }
 

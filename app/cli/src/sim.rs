@@ -14,9 +14,7 @@ use clap::Args;
 use ecc_interp::{LoadError, load_psi};
 use ecc_runtime::Energy;
 use ecc_scene::energy::apply_params;
-use ecc_scene::{
-    EnergyError, EnergyRequest, EnergySource, RunOptions, SceneError, SceneFile, run_scene,
-};
+use ecc_scene::{EnergyError, EnergyRequest, EnergySource, RunOptions, SceneFile, run_scene};
 
 use crate::error::CliError;
 use crate::output::print_stdout;
@@ -111,10 +109,6 @@ impl EnergySource for CliEnergies {
     }
 }
 
-fn scene_error(e: SceneError) -> CliError {
-    CliError::Scene(e.to_string())
-}
-
 /// Run a parsed scene with the CLI's options.
 pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
     if let Some(n) = args.frames {
@@ -129,10 +123,10 @@ pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
         pictures: args.no_pictures.then_some(false),
     };
     let mut progress = Progress::new(args.quiet);
-    let report = run_scene(&file, &CliEnergies, &opts, &mut progress).map_err(scene_error)?;
+    let report = run_scene(&file, &CliEnergies, &opts, &mut progress)?;
     let s = &report.summary;
     if args.json {
-        let json = serde_json::to_string_pretty(s).map_err(|e| CliError::Stdout(e.to_string()))?;
+        let json = serde_json::to_string_pretty(s)?;
         print_stdout(&json)?;
     } else {
         let frames = s.frames.len().saturating_sub(1);
@@ -152,12 +146,12 @@ pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
         eprintln!("warning: {w}");
     }
     if let Some(why) = &s.stopped {
-        return Err(CliError::Scene(format!("the run stopped early: {why}")));
+        return Err(CliError::Stopped { why: why.clone() });
     }
     Ok(())
 }
 
 /// `ecc sim SCENE.toml` (without a scene, `main` runs the demo instead).
 pub fn run(path: &std::path::Path, args: &SimArgs) -> Result<(), CliError> {
-    run_file(SceneFile::read(path).map_err(scene_error)?, args)
+    run_file(SceneFile::read(path)?, args)
 }
