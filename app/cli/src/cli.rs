@@ -16,10 +16,10 @@ use crate::sim::SimArgs;
     arg_required_else_help = true,
     args_conflicts_with_subcommands = true,
     subcommand_negates_reqs = true,
-    after_help = "Examples:\n  ecc energies/psi/snh.psi --emit rs -o snh.rs\n  ecc energies/psi/sd3.psi --emit report\n  ecc eval energies/psi/arap.psi --dim 2 --F \"1.2 0.1; 0 0.9\" --json\n  ecc check energies/psi/ogden.psi --samples 64"
+    after_help = "Examples:\n  ecc energies/psi/snh.psi --emit rs -o snh.rs\n  ecc energies/psi/snh.psi --emit cpp -o snh.hpp\n  ecc energies/psi/sd3.psi --emit report\n  ecc eval energies/psi/arap.psi --dim 2 --F \"1.2 0.1; 0 0.9\" --json\n  ecc check energies/psi/ogden.psi --samples 64"
 )]
 pub struct Cli {
-    /// A subcommand; without one, `ecc FILE.psi --emit rs|report`.
+    /// A subcommand; without one, `ecc FILE.psi --emit rs|cpp|report`.
     #[command(subcommand)]
     pub command: Option<Command>,
     /// The emit form's arguments.

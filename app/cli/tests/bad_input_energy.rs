@@ -217,8 +217,8 @@ fn command_line_usage_errors_exit_2() {
     says(&e, &["'--dim", "4 is not in 2..=3"]);
     let e = s.fails_with(2, &["eval", &f, "--frobnicate"]);
     says(&e, &["unexpected argument '--frobnicate'"]);
-    let e = s.fails_with(2, &[&f, "--emit", "cpp"]);
-    says(&e, &["cpp"]);
+    let e = s.fails_with(2, &[&f, "--emit", "py"]);
+    says(&e, &["py"]);
     only_inputs(&s, &["arap.psi"]);
 }
 

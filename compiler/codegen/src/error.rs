@@ -10,6 +10,12 @@ pub enum CodegenError {
         /// The name given.
         name: String,
     },
+    /// `CppOptions::type_name` is not a C++ identifier, or is a keyword or
+    /// reserved name.
+    InvalidCppTypeName {
+        /// The name given.
+        name: String,
+    },
     /// `GenOptions::runtime_path` does not parse as a Rust path.
     InvalidRuntimePath {
         /// The path given.
@@ -41,6 +47,10 @@ impl fmt::Display for CodegenError {
             CodegenError::InvalidTypeName { name } => {
                 write!(f, "`{name}` is not a valid Rust type name")
             }
+            CodegenError::InvalidCppTypeName { name } => write!(
+                f,
+                "`{name}` is not a valid C++ type name (an ASCII identifier that is not a keyword)"
+            ),
             CodegenError::InvalidRuntimePath { path } => {
                 write!(f, "runtime path `{path}` is not a valid Rust path")
             }

@@ -228,7 +228,7 @@ impl Ctx<'_> {
 /// The whole header.
 pub(super) fn header(module: &Module, opts: &CppOptions) -> Result<String, CodegenError> {
     if !valid_type_name(&opts.type_name) {
-        return Err(CodegenError::InvalidTypeName {
+        return Err(CodegenError::InvalidCppTypeName {
             name: opts.type_name.clone(),
         });
     }
