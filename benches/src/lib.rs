@@ -14,8 +14,8 @@
 //! [`generic_kernel`] (the f32/f64 element kernel), [`reference`] (the
 //! double-double reference), [`cases`] (hard F), [`energies`] (the energy set),
 //! [`element`] (per-element timing and accuracy), [`solve`] (convergence
-//! runs), [`scaling`] (time per Newton iteration vs size), [`plot`] (PNG
-//! charts on ecc-scene's rasteriser), [`report`] (machine info, Markdown).
+//! runs), [`scaling`] (time per Newton iteration vs size), [`report`]
+//! (machine info, Markdown, PNG figures drawn with `ecc_scene::pictures::Chart`).
 
 // Index loops mirror the maths.
 #![allow(clippy::needless_range_loop)]
@@ -28,7 +28,6 @@ pub mod energies;
 pub mod generic_kernel;
 pub mod graph_eval;
 pub mod linalg;
-pub mod plot;
 pub mod reference;
 pub mod report;
 pub mod scaling;

@@ -1,8 +1,10 @@
-//! The report's PNG figures (see [`crate::plot`]).
+//! The report's PNG figures, drawn with ecc-scene's plotters-based
+//! [`Chart`] (one plotting module for the scenes and the report).
+
+use ecc_scene::pictures::{Chart, Series};
 
 use super::Results;
 use crate::element::Method;
-use crate::plot::{Chart, Series};
 use crate::solve::{SolveMethod, THRESHOLDS};
 
 /// File-name slug of a problem name.
@@ -21,21 +23,6 @@ pub fn slug(name: &str) -> String {
         s = s.replace("__", "_");
     }
     s.trim_matches('_').to_string()
-}
-
-/// ASCII label of a solve method (the plot font is ASCII only).
-fn ascii(m: SolveMethod) -> &'static str {
-    match m {
-        SolveMethod::Clamp => "analytic clamp",
-        SolveMethod::Abs => "analytic abs",
-        SolveMethod::Adaptive => "adaptive (rho)",
-        SolveMethod::NumericProjection => "numeric elem. proj.",
-        SolveMethod::LaplacianProxy => "Laplacian proxy",
-    }
-}
-
-fn method_ascii(m: Method, d: usize) -> String {
-    m.label(d).replace('×', "x")
 }
 
 /// Geometric mean of the per-energy time ratios of `m` in dimension `d`.
@@ -65,9 +52,10 @@ fn tradeoff(r: &Results, d: usize) -> Chart {
         .iter()
         .filter_map(|&m| {
             Some(Series {
-                label: method_ascii(m, d),
+                label: m.label(d),
                 points: vec![(mean_ratio(r, m, d)?, worst_err(r, m, d)?.max(1e-17))],
                 dots: true,
+                colour: None,
             })
         })
         .collect();
@@ -78,7 +66,7 @@ fn tradeoff(r: &Results, d: usize) -> Chart {
         log_x: true,
         log_y: true,
         series,
-        hlines: vec![],
+        ..Chart::default()
     }
 }
 
@@ -91,7 +79,7 @@ fn convergence(r: &Results, problem: &str, by_time: bool) -> Chart {
                 .iter()
                 .find(|t| t.problem == problem && t.method == m)?;
             Some(Series {
-                label: ascii(m).into(),
+                label: m.label().into(),
                 points: t
                     .points
                     .iter()
@@ -103,22 +91,24 @@ fn convergence(r: &Results, problem: &str, by_time: bool) -> Chart {
                     })
                     .collect(),
                 dots: t.points.len() <= 60,
+                colour: None,
             })
         })
         .collect();
-    let ascii_problem: String = problem.chars().filter(|c| c.is_ascii()).collect();
     Chart {
-        title: format!("{ascii_problem}: convergence"),
+        title: format!("{problem}: convergence"),
         xlabel: if by_time {
             "wall time (s)".into()
         } else {
             "iteration".into()
         },
-        ylabel: "max |grad E|".into(),
-        log_x: false,
+        ylabel: "‖∇E‖∞".into(),
         log_y: true,
+        integer_x: !by_time,
         series,
         hlines: THRESHOLDS.to_vec(),
+        hline_label: "thresholds".into(),
+        ..Chart::default()
     }
 }
 
@@ -137,6 +127,7 @@ fn scaling(r: &Results) -> Chart {
                     label: format!("{mesh} {solver}"),
                     points: pts,
                     dots: true,
+                    colour: None,
                 });
             }
         }
@@ -148,7 +139,7 @@ fn scaling(r: &Results) -> Chart {
         log_x: true,
         log_y: true,
         series,
-        hlines: vec![],
+        ..Chart::default()
     }
 }
 
@@ -173,4 +164,174 @@ pub fn all(r: &Results) -> Vec<(String, Vec<u8>)> {
         out.push(("scaling.png".into(), scaling(r).png(900, 480)));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    //! The figures of the committed full run (`docs/benchmarks/results.json`),
+    //! rebuilt from its JSON: every figure renders at its size with ink in
+    //! the plot. `ECC_FIGURES_OUT=DIR` also writes them there (to look at,
+    //! or to refresh docs/benchmarks/*.png without re-running the report).
+
+    use serde_json::Value;
+
+    use super::*;
+    use crate::element::accuracy::{AccuracyResult, AccuracyRow};
+    use crate::element::timing::{TimingResult, TimingRow};
+    use crate::report::{ProblemInfo, Size};
+    use crate::scaling::ScalingRow;
+    use crate::solve::{Point, Trace};
+
+    fn f(v: &Value, k: &str) -> f64 {
+        v[k].as_f64().unwrap_or(f64::NAN)
+    }
+    fn u(v: &Value, k: &str) -> usize {
+        v[k].as_u64().unwrap_or(0) as usize
+    }
+    fn s(v: &Value, k: &str) -> String {
+        v[k].as_str().unwrap_or_default().to_string()
+    }
+    fn rows(v: &Value) -> &[Value] {
+        v.as_array().map(Vec::as_slice).unwrap_or(&[])
+    }
+    fn method(v: &Value) -> Method {
+        let name = v["method"].as_str().unwrap_or_default();
+        *Method::ALL
+            .iter()
+            .find(|m| format!("{m:?}") == name)
+            .unwrap_or_else(|| panic!("unknown method {name}"))
+    }
+    fn solve_method(v: &Value) -> SolveMethod {
+        let name = v["method"].as_str().unwrap_or_default();
+        *SolveMethod::ALL
+            .iter()
+            .find(|m| format!("{m:?}") == name)
+            .unwrap_or_else(|| panic!("unknown solve method {name}"))
+    }
+
+    /// The parts of `results.json` the figures read.
+    fn results(v: &Value) -> Results {
+        let timing = rows(&v["timing"]["rows"])
+            .iter()
+            .map(|r| TimingRow {
+                dim: u(r, "dim"),
+                energy: s(r, "energy"),
+                method: method(r),
+                ns: f(r, "ns"),
+                ratio: f(r, "ratio"),
+            })
+            .collect();
+        let accuracy = rows(&v["accuracy"]["rows"])
+            .iter()
+            .map(|r| AccuracyRow {
+                dim: u(r, "dim"),
+                energy: s(r, "energy"),
+                class: s(r, "class"),
+                method: method(r),
+                hess_err: f(r, "hess_err"),
+                grad_err: f(r, "grad_err"),
+                samples: u(r, "samples"),
+            })
+            .collect();
+        let problems = rows(&v["problems"])
+            .iter()
+            .map(|p| ProblemInfo {
+                name: s(p, "name"),
+                file: s(p, "file"),
+                energy: s(p, "energy"),
+                elements: u(p, "elements"),
+                vertices: u(p, "vertices"),
+            })
+            .collect();
+        let traces = rows(&v["traces"])
+            .iter()
+            .map(|t| Trace {
+                problem: s(t, "problem"),
+                method: solve_method(t),
+                elements: u(t, "elements"),
+                unknowns: u(t, "unknowns"),
+                points: rows(&t["points"])
+                    .iter()
+                    .map(|p| Point {
+                        iter: u(p, "iter"),
+                        seconds: f(p, "seconds"),
+                        grad_inf: f(p, "grad_inf"),
+                        energy: f(p, "energy"),
+                    })
+                    .collect(),
+                status: s(t, "status"),
+                seconds_measured: f(t, "seconds_measured"),
+            })
+            .collect();
+        let scaling = rows(&v["scaling"])
+            .iter()
+            .map(|r| ScalingRow {
+                mesh: s(r, "mesh"),
+                elements: u(r, "elements"),
+                unknowns: u(r, "unknowns"),
+                solver: s(r, "solver"),
+                setup_s: f(r, "setup_s"),
+                iterations: u(r, "iterations"),
+                per_iter_s: f(r, "per_iter_s"),
+                assembly_s: f(r, "assembly_s"),
+                factor_s: f(r, "factor_s"),
+                solve_s: f(r, "solve_s"),
+                line_search_s: f(r, "line_search_s"),
+                cg_per_iter: f(r, "cg_per_iter"),
+                factor_mb: f(r, "factor_mb"),
+                status: s(r, "status"),
+            })
+            .collect();
+        Results {
+            size: Size::Full,
+            command: s(v, "command"),
+            machine: Default::default(),
+            timing: TimingResult {
+                rows: timing,
+                ..Default::default()
+            },
+            accuracy: AccuracyResult {
+                rows: accuracy,
+                ..Default::default()
+            },
+            problems,
+            traces,
+            solve_limits: (0.0, 0, 0),
+            scaling,
+            scaling_iters: 0,
+            notes: vec![],
+            seconds: 0.0,
+        }
+    }
+
+    #[test]
+    fn figures_of_the_committed_run_render() {
+        let path = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../docs/benchmarks/results.json"
+        );
+        let text = std::fs::read_to_string(path).expect("docs/benchmarks/results.json");
+        let v: Value = serde_json::from_str(&text).expect("valid JSON");
+        let r = results(&v);
+        let figs = all(&r);
+        // 2 trade-off plots, 2 per problem, the scaling plot
+        assert_eq!(figs.len(), 2 + 2 * r.problems.len() + 1);
+        for (name, png) in &figs {
+            let dec = png::Decoder::new(std::io::Cursor::new(png.as_slice()));
+            let mut rd = dec.read_info().expect("a PNG");
+            let mut buf = vec![0; rd.output_buffer_size().expect("size")];
+            let info = rd.next_frame(&mut buf).expect("decodes");
+            assert_eq!(info.width, 900, "{name}");
+            // coloured curve pixels (not grey ink or white)
+            let coloured = buf
+                .chunks(3)
+                .filter(|c| c.iter().max().unwrap_or(&0) - c.iter().min().unwrap_or(&0) > 60)
+                .count();
+            assert!(coloured > 300, "{name}: {coloured} coloured pixels");
+            if let Some(dir) = std::env::var_os("ECC_FIGURES_OUT") {
+                let out = std::path::Path::new(&dir).join(name);
+                std::fs::write(&out, png).unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+            }
+        }
+    }
 }

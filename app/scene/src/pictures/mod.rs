@@ -1,5 +1,8 @@
-//! Pictures without heavy dependencies: a software rasteriser with a
-//! z-buffer and Lambert shading, a 5×7 bitmap font, and PNG output.
+//! Pictures and plots through maintained crates: tiny-skia for
+//! anti-aliased 2D drawing, plotters (over a tiny-skia backend) for plots,
+//! text in an embedded TrueType font (DejaVu Sans, rasterised by ab_glyph),
+//! and a small z-buffer rasteriser, supersampled, for shaded 3D surfaces.
+//! Every picture is written through one PNG encoder ([`Picture::to_png`]).
 //!
 //! * [`volume`]: the boundary of a tet mesh, shaded, from an orbit camera
 //!   around the up direction (−gravity, else the ground normal, else +y),
@@ -12,25 +15,25 @@
 //!   coloured by isometric distortion max(σ₁, 1/σ₂).
 //! * [`convergence`]: ‖∇E‖∞ on a log scale against Newton iteration (per
 //!   solve) and against the time spent in Newton solves, with the tolerance.
-//!
-//! Everything is drawn at twice the size and box-filtered down (anti-aliasing).
+//! * [`Chart`]: line charts with linear or log axes and a legend (the
+//!   convergence plot and the benchmark report's figures).
 
-mod font;
+mod backend;
+mod chart;
 mod image;
 mod param;
 mod planar;
 mod plot;
 mod raster;
+mod text;
 mod volume;
 
-pub use image::{Picture, Rgb, hex, mix};
+pub use chart::{Chart, Legend, PALETTE, Series};
+pub use image::{Orient, Picture, Rgb, hex, mix};
 pub use param::parameterization;
 pub use planar::planar;
 pub use plot::convergence;
 pub use volume::volume;
-
-/// Supersampling factor.
-pub(crate) const SS: usize = 2;
 
 /// How to draw a body.
 #[derive(Clone, Copy, Debug)]
@@ -49,14 +52,15 @@ pub struct View<'a> {
     pub up: [f64; 3],
 }
 
-/// A blue → white → red ramp for t ∈ [0, 1].
+/// A blue → purple → red ramp for t ∈ [0, 1], dark enough everywhere to
+/// read as a line on white (frames of a run in a plot).
 pub(crate) fn ramp(t: f64) -> Rgb {
     let t = t.clamp(0.0, 1.0) as f32;
-    let (blue, white, red) = (hex(0x3b6fb6), hex(0xf2efe9), hex(0xc8312c));
+    let (blue, purple, red) = (hex(0x2166ac), hex(0x8e3f9e), hex(0xd7301f));
     if t < 0.5 {
-        mix(blue, white, 2.0 * t)
+        mix(blue, purple, 2.0 * t)
     } else {
-        mix(white, red, 2.0 * t - 1.0)
+        mix(purple, red, 2.0 * t - 1.0)
     }
 }
 
@@ -82,26 +86,64 @@ pub(crate) fn sv2(a: f64, b: f64, c: f64, d: f64) -> (f64, f64) {
     (q + r, (q - r).abs())
 }
 
-/// Title bar: the title at the top-left of a supersampled picture.
-pub(crate) fn title(pic: &mut Picture, text: &str, sub: &str) {
-    let s = SS as i64;
-    pic.text(14 * s, 10 * s, text, 2 * s, hex(0x202020));
+/// Pixel size of a picture's title for a picture `h` pixels high.
+pub(crate) fn title_size(h: f64) -> f64 {
+    (0.032 * h).clamp(15.0, 30.0)
+}
+
+/// Height of the title bar of a picture `h` pixels high.
+pub(crate) fn title_height(h: f64) -> f64 {
+    2.2 * title_size(h)
+}
+
+/// Title bar: the title at the top-left, the subtitle after it in grey.
+/// Returns the x where the text ends.
+pub(crate) fn title(pic: &mut Picture, text: &str, sub: &str) -> f64 {
+    let size = title_size(pic.height() as f64);
+    let (x, y) = (0.6 * size, 0.5 * size);
+    let mut end = x + pic.text(x, y, text, size, hex(0x202020), Orient::Across);
     if !sub.is_empty() {
-        let x = 14 * s + Picture::text_width(text, 2 * s) + 14 * s;
-        pic.text(x, 14 * s, sub, s, hex(0x606060));
+        let small = (0.68 * size).max(12.0);
+        // on the title's baseline
+        let dy = text::ascent(size) - text::ascent(small);
+        let sx = end + 0.8 * size;
+        end = sx + pic.text(sx, y + dy, sub, small, hex(0x5a5a5a), Orient::Across);
     }
+    end
+}
+
+/// A horizontal colour bar `w × h` at (x, y) for `colour(t)`, t ∈ [0, 1],
+/// with tick labels at the given t and a caption to its right.
+pub(crate) fn colour_bar(
+    pic: &mut Picture,
+    (x, y, w, h): (f64, f64, f64, f64),
+    colour: impl Fn(f64) -> Rgb,
+    ticks: &[(&str, f64)],
+    caption: &str,
+) {
+    let n = w.ceil().max(1.0) as usize;
+    for i in 0..n {
+        let t = (i as f64 + 0.5) / n as f64;
+        pic.fill_rect(x + i as f64, y, 1.0, h, colour(t));
+    }
+    let ink = hex(0x404040);
+    let size = (1.3 * h).clamp(11.0, 18.0);
+    for (label, t) in ticks {
+        let tx = x + t * w;
+        pic.line((tx, y + h), (tx, y + h + 0.35 * size), 1.0, ink);
+        let lw = Picture::text_width(label, size);
+        pic.text(
+            tx - 0.5 * lw,
+            y + h + 0.4 * size,
+            label,
+            size,
+            ink,
+            Orient::Across,
+        );
+    }
+    let cy = y + 0.5 * h - 0.5 * text::line_height(size);
+    pic.text(x + w + 0.7 * size, cy, caption, size, ink, Orient::Across);
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn singular_values_of_2x2() {
-        let (s1, s2) = sv2(3.0, 0.0, 0.0, -2.0);
-        assert!((s1 - 3.0).abs() < 1e-12 && (s2 - 2.0).abs() < 1e-12);
-        let (s1, s2) = sv2(1.0, 1.0, 0.0, 1.0);
-        // golden ratio pair
-        assert!((s1 * s2 - 1.0).abs() < 1e-12 && (s1 - 1.618_033_988_749_895).abs() < 1e-12);
-    }
-}
+mod tests;

@@ -3,11 +3,11 @@
 
 use ecc_mesh::TriMesh;
 
-use super::image::{Picture, Rgb, hex};
+use super::image::{Orient, Picture, Rgb, hex};
 use super::planar::{Fit2, boundary_edges, fill_tris};
-use super::raster::{Camera, ZBuffer, cross, dot, normalize, sub};
+use super::raster::{Camera, Layer, cross, dot, normalize, sub};
 use super::volume::{Scene3, draw_body};
-use super::{SS, heat, sv2, title};
+use super::{colour_bar, heat, sv2, title, title_height};
 
 /// max(σ₁, 1/σ₂) of the map from each rest triangle (in its isometric
 /// frame) to uv: 1 for an isometry, ∞ for a flipped triangle.
@@ -96,40 +96,29 @@ fn surface_view(mesh: &TriMesh) -> ([f64; 3], [f64; 3], [f64; 3], f64) {
     (centre, dir, up, r.max(1e-9))
 }
 
-/// Left: the surface textured with a checkerboard through `uv`; right: the
-/// uv layout coloured by isometric distortion; `start` is the Tutte layout
-/// (reported in the subtitle).
-pub fn parameterization(
-    mesh: &TriMesh,
-    start: &[[f64; 2]],
-    uv: &[[f64; 2]],
-    name: &str,
-    size: (usize, usize),
-) -> Picture {
-    let (w, h) = (size.0 * SS, size.1 * SS);
-    let mut pic = Picture::new(w, h, hex(0xfbfbfb));
-    let top = 44.0 * SS as f64;
-    let margin = 20.0 * SS as f64;
-    let half = 0.5 * w as f64;
-    let legend = 40.0 * SS as f64;
-    let d = isometric_distortion(mesh, uv);
-    let d0 = isometric_distortion(mesh, start);
-    let mean = |v: &[f64]| {
-        let finite: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
-        finite.iter().sum::<f64>() / finite.len().max(1) as f64
-    };
-    let flipped = d.iter().filter(|x| !x.is_finite()).count();
+/// Mean of the finite values.
+fn finite_mean(v: &[f64]) -> f64 {
+    let finite: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
+    finite.iter().sum::<f64>() / finite.len().max(1) as f64
+}
 
-    // left: checkerboard through the map
+/// The surface with a checkerboard of 24 squares across the uv box.
+fn draw_checkered_surface(
+    pic: &mut Picture,
+    mesh: &TriMesh,
+    uv: &[[f64; 2]],
+    vp: (f64, f64, f64, f64),
+) {
     let (centre, dir, up, r) = surface_view(mesh);
-    let vp = (
-        margin,
-        top,
-        half - 1.5 * margin,
-        h as f64 - top - margin - legend,
+    let mut layer = Layer::new(vp);
+    let cam = Camera::fit(
+        centre,
+        dir,
+        up,
+        3.5 * r,
+        &mesh.positions,
+        layer.viewport(2.0),
     );
-    let cam = Camera::fit(centre, dir, up, 3.5 * r, &mesh.positions, vp);
-    let mut zb = ZBuffer::new(&pic);
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in uv {
         lo = [lo[0].min(p[0]), lo[1].min(p[1])];
@@ -144,58 +133,61 @@ pub fn parameterization(
         checker: Some((uv, checker)),
         wire: false,
     };
-    draw_body(&mut pic, &mut zb, &cam, &scene, up);
+    draw_body(&mut layer, &cam, &scene, up);
+    layer.composite(pic);
+}
 
-    // right: uv layout by distortion
-    let vp2 = (
-        half + 0.5 * margin,
-        top,
-        half - 1.5 * margin,
-        h as f64 - top - margin - legend,
+/// Left: the surface textured with a checkerboard through `uv`; right: the
+/// uv layout coloured by isometric distortion; `start` is the Tutte layout
+/// (reported in the subtitle).
+pub fn parameterization(
+    mesh: &TriMesh,
+    start: &[[f64; 2]],
+    uv: &[[f64; 2]],
+    name: &str,
+    size: (usize, usize),
+) -> Picture {
+    let (w, h) = (size.0 as f64, size.1 as f64);
+    let mut pic = Picture::new(size.0, size.1, hex(0xfbfbfb));
+    let top = title_height(h);
+    let margin = 0.02 * w.min(h) + 4.0;
+    let half = 0.5 * w;
+    let bar = (0.02 * h).clamp(8.0, 14.0);
+    let legend = 3.4 * bar;
+    let d = isometric_distortion(mesh, uv);
+    let d0 = isometric_distortion(mesh, start);
+    let flipped = d.iter().filter(|x| !x.is_finite()).count();
+    let panel_h = h - top - margin - legend;
+
+    // left: checkerboard through the map
+    draw_checkered_surface(
+        &mut pic,
+        mesh,
+        uv,
+        (margin, top, half - 1.5 * margin, panel_h),
     );
-    let fit = Fit2::new(uv, vp2);
+
+    // right: uv layout by distortion, with its boundary
+    let fit = Fit2::new(uv, (half + 0.5 * margin, top, half - 1.5 * margin, panel_h));
     let colours: Vec<Rgb> = d.iter().map(|x| distortion_colour(*x)).collect();
     fill_tris(&mut pic, &fit, &mesh.triangles, uv, &colours, true);
-    for (a, b) in boundary_edges(&mesh.triangles) {
-        pic.line(
-            fit.map(uv[a]),
-            fit.map(uv[b]),
-            1.0 * SS as f64,
-            hex(0x303030),
-        );
-    }
+    let outline: Vec<_> = boundary_edges(&mesh.triangles)
+        .into_iter()
+        .map(|(a, b)| (fit.map(uv[a]), fit.map(uv[b])))
+        .collect();
+    pic.segments(&outline, 1.0, hex(0x303030), 1.0);
 
-    // legend: colour bar for max(σ₁, 1/σ₂) from 1 to 4
-    let s = SS as i64;
-    let (bx, by, bw, bh) = (
-        (half + 0.5 * margin) as i64,
-        h as i64 - 30 * s,
-        220 * s,
-        10 * s,
-    );
-    for i in 0..bw {
-        let t = i as f64 / bw as f64;
-        let c = heat(t);
-        pic.fill_rect(bx + i, by, bx + i + 1, by + bh, c);
-    }
-    for (label, t) in [("1", 0.0), ("2", 0.5), ("4+", 1.0)] {
-        let x = bx + (t * bw as f64) as i64;
-        pic.fill_rect(x, by + bh, x + s, by + bh + 3 * s, hex(0x404040));
-        pic.text(x - 2 * s, by + bh + 5 * s, label, s, hex(0x404040));
-    }
-    pic.text(
-        bx + bw + 10 * s,
-        by,
-        "distortion max(s1, 1/s2)",
-        s,
-        hex(0x404040),
-    );
-    pic.text(
-        margin as i64,
-        h as i64 - 30 * s,
-        "checkerboard mapped through the uv map",
-        s,
-        hex(0x404040),
+    // captions: under the surface, and a colour bar for max(σ₁, 1/σ₂) from 1 to 4
+    let by = top + panel_h + 0.7 * bar;
+    let size = (1.3 * bar).clamp(11.0, 18.0);
+    let caption = "checkerboard mapped through the uv map";
+    pic.text(margin, by, caption, size, hex(0x404040), Orient::Across);
+    colour_bar(
+        &mut pic,
+        (half + 0.5 * margin, by, (0.22 * w).min(220.0), bar),
+        heat,
+        &[("1", 0.0), ("2", 0.5), ("4+", 1.0)],
+        "distortion max(σ₁, 1/σ₂)",
     );
     title(
         &mut pic,
@@ -204,9 +196,9 @@ pub fn parameterization(
             "{} triangles, {} flipped; mean distortion {:.3} (Tutte start {:.3})",
             mesh.triangles.len(),
             flipped,
-            mean(&d),
-            mean(&d0)
+            finite_mean(&d),
+            finite_mean(&d0)
         ),
     );
-    pic.downsample(SS)
+    pic
 }

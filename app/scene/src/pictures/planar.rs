@@ -1,8 +1,7 @@
 //! Flat drawings of planar triangle meshes (deformations and uv layouts).
 
-use super::image::{Picture, Rgb, hex};
-use super::raster::{ZBuffer, triangle};
-use super::{SS, View, heat, sv2, title};
+use super::image::{Orient, Picture, Rgb, hex};
+use super::{View, colour_bar, heat, sv2, title, title_height};
 
 /// A 2D → screen map fitted to a box (y up on screen).
 #[derive(Clone, Copy, Debug)]
@@ -39,7 +38,9 @@ impl Fit2 {
     }
 }
 
-/// Fill triangles with per-triangle colours and optional dark edges.
+/// Fill triangles with per-triangle colours (anti-aliased, later triangles
+/// on top: inverted ones may overlap) and, when `edges` and the triangles
+/// are large enough on screen, a faint wireframe.
 pub(crate) fn fill_tris(
     pic: &mut Picture,
     fit: &Fit2,
@@ -48,7 +49,6 @@ pub(crate) fn fill_tris(
     colour: &[Rgb],
     edges: bool,
 ) {
-    let mut zb = ZBuffer::new(pic);
     let scr: Vec<(f64, f64)> = x.iter().map(|p| fit.map(*p)).collect();
     let mean_edge = tris
         .iter()
@@ -59,22 +59,28 @@ pub(crate) fn fill_tris(
         })
         .sum::<f64>()
         / tris.len().clamp(1, 2000) as f64;
-    let wire = edges && mean_edge > 7.0 * SS as f64;
-    let n = tris.len() as f64;
-    for (k, t) in tris.iter().enumerate() {
-        // later triangles on top (inverted ones may overlap)
-        let depth = 1.0 - k as f64 / (n + 1.0);
-        let p = t.map(|v| [scr[v].0, scr[v].1, depth]);
-        let c = colour[k];
-        triangle(pic, &mut zb, p, |_, dist| {
-            if wire && dist.iter().fold(f64::INFINITY, |m, d| m.min(*d)) < 0.8 * SS as f64 {
-                Some(c.map(|v| v * 0.55))
-            } else {
-                Some(c)
-            }
-        });
-        // the rasteriser fills by orientation-independent edge tests
+    for (t, c) in tris.iter().zip(colour) {
+        pic.tile(&t.map(|v| scr[v]), *c, 0.6);
     }
+    if edges && mean_edge > 7.0 {
+        let segs: Vec<_> = all_edges(tris)
+            .into_iter()
+            .map(|(a, b)| (scr[a], scr[b]))
+            .collect();
+        pic.segments(&segs, 0.7, hex(0x000000), 0.28);
+    }
+}
+
+/// Every edge once.
+fn all_edges(tris: &[[usize; 3]]) -> Vec<(usize, usize)> {
+    let mut e: Vec<(usize, usize)> = tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    e.sort_unstable();
+    e.dedup();
+    e
 }
 
 /// Boundary edges (edges used by one triangle).
@@ -126,6 +132,24 @@ fn distortion_colours(tris: &[[usize; 3]], rest: &[[f64; 2]], x: &[[f64; 2]]) ->
         .collect()
 }
 
+/// The part of the rectangle `(x, y, w, h)` where `f < 0` (f affine).
+fn clip_half((x, y, w, h): (f64, f64, f64, f64), f: impl Fn((f64, f64)) -> f64) -> Vec<(f64, f64)> {
+    let rect = [(x, y), (x + w, y), (x + w, y + h), (x, y + h)];
+    let mut out = Vec::new();
+    for i in 0..4 {
+        let (a, b) = (rect[i], rect[(i + 1) % 4]);
+        let (fa, fb) = (f(a), f(b));
+        if fa < 0.0 {
+            out.push(a);
+        }
+        if (fa < 0.0) != (fb < 0.0) {
+            let t = fa / (fa - fb);
+            out.push((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+        }
+    }
+    out
+}
+
 fn draw_state(
     pic: &mut Picture,
     fit: &Fit2,
@@ -133,45 +157,44 @@ fn draw_state(
     rest: &[[f64; 2]],
     x: &[[f64; 2]],
     view: &View<'_>,
-    detail: bool,
+    (frame, detail): ((f64, f64, f64, f64), bool),
 ) {
     if let Some((n, h)) = view.ground {
-        // shade the half-plane n·p < h across the viewport
-        let (nx, ny) = (n[0], n[1]);
-        for py in 0..pic.h {
-            for px in 0..pic.w {
-                let p = [
-                    (px as f64 + 0.5 - fit.ox) / fit.s,
-                    (fit.oy - py as f64 - 0.5) / fit.s,
-                ];
-                if nx * p[0] + ny * p[1] < h {
-                    let stripe = ((px + py) / (6 * SS)).is_multiple_of(2);
-                    pic.blend(
-                        px as i64,
-                        py as i64,
-                        if stripe { hex(0xb9bcc2) } else { hex(0xd3d5d9) },
-                        0.85,
-                    );
-                }
-            }
+        // the half-plane n·p < h, hatched
+        let world = |(sx, sy): (f64, f64)| {
+            let p = [(sx - fit.ox) / fit.s, (fit.oy - sy) / fit.s];
+            n[0] * p[0] + n[1] * p[1] - h
+        };
+        let poly = clip_half(frame, world);
+        if poly.len() >= 3 {
+            pic.hatch(&poly, hex(0xdfe1e5), hex(0xa9adb4), 7.0);
         }
     }
     if detail {
-        for (a, b) in boundary_edges(tris) {
-            pic.line(
-                fit.map(rest[a]),
-                fit.map(rest[b]),
-                1.2 * SS as f64,
-                hex(0xb5b5b5),
-            );
-        }
+        let outline: Vec<_> = boundary_edges(tris)
+            .into_iter()
+            .map(|(a, b)| (fit.map(rest[a]), fit.map(rest[b])))
+            .collect();
+        pic.segments(&outline, 1.2, hex(0xa8a8a8), 1.0);
     }
     let colours = distortion_colours(tris, rest, x);
     fill_tris(pic, fit, tris, x, &colours, detail);
+    let boundary: Vec<_> = boundary_edges(tris)
+        .into_iter()
+        .map(|(a, b)| (fit.map(x[a]), fit.map(x[b])))
+        .collect();
+    pic.segments(
+        &boundary,
+        if detail { 1.1 } else { 0.8 },
+        hex(0x3a3a3a),
+        0.9,
+    );
+    let r = if detail { 3.2 } else { 2.0 };
     for (v, p) in x.iter().enumerate() {
         if view.highlight.get(v).copied().unwrap_or(false) {
             let (sx, sy) = fit.map(*p);
-            pic.disc(sx, sy, 2.2 * SS as f64, hex(0xee7d3b));
+            pic.disc(sx, sy, r + 0.8, hex(0x7a3410));
+            pic.disc(sx, sy, r, hex(0xee7d3b));
         }
     }
 }
@@ -185,70 +208,59 @@ pub fn planar(
     shots: &[(usize, Vec<[f64; 2]>)],
     view: &View<'_>,
 ) -> Picture {
-    let (w, h) = (view.size.0 * SS, view.size.1 * SS);
-    let mut pic = Picture::new(w, h, hex(0xfbfbfb));
+    let (w, h) = (view.size.0 as f64, view.size.1 as f64);
+    let mut pic = Picture::new(view.size.0, view.size.1, hex(0xfbfbfb));
     let Some((last_frame, last)) = shots.last() else {
-        return pic.downsample(SS);
+        return pic;
     };
     let mut every: Vec<[f64; 2]> = rest.to_vec();
     for (_, x) in shots {
         every.extend_from_slice(x);
     }
-    let top = 44.0 * SS as f64;
-    let margin = 24.0 * SS as f64;
-    let strip = if shots.len() > 2 {
-        0.26 * h as f64
-    } else {
-        0.0
-    };
+    let top = title_height(h);
+    let margin = 0.025 * w.min(h) + 4.0;
+    let bar = (0.02 * h).clamp(8.0, 14.0);
+    let legend = 3.2 * bar;
+    let strip = if shots.len() > 2 { 0.26 * h } else { 0.0 };
     // the main panel frames the result; thumbnails share one framing of all shots
-    let fit = Fit2::new(
-        last,
-        (
-            margin,
-            top,
-            w as f64 - 2.0 * margin,
-            h as f64 - top - strip - margin,
-        ),
+    let main_vp = (
+        margin,
+        top,
+        w - 2.0 * margin,
+        h - top - strip - margin - legend,
     );
-    draw_state(&mut pic, &fit, tris, rest, last, view, true);
+    let fit = Fit2::new(last, main_vp);
+    draw_state(&mut pic, &fit, tris, rest, last, view, (main_vp, true));
     title(
         &mut pic,
         view.title,
-        &format!(
-            "frame {last_frame}   {} triangles, colour = conformal distortion",
-            tris.len()
-        ),
+        &format!("frame {last_frame}, {} triangles", tris.len()),
+    );
+    let by = top + main_vp.3 + 0.6 * bar;
+    colour_bar(
+        &mut pic,
+        (margin, by, (0.3 * w).min(260.0), bar),
+        heat,
+        &[("1", 0.0), ("√3", 0.5), ("3+", 1.0)],
+        "conformal distortion σ₁/σ₂ (purple: inverted)",
     );
     if strip > 0.0 {
         let k = shots.len().min(6);
-        let cell = (w as f64 - 2.0 * margin) / k as f64;
-        let y0 = h as f64 - strip - 0.3 * margin;
+        let cell = (w - 2.0 * margin) / k as f64;
+        let label = (0.022 * h).clamp(11.0, 18.0);
+        let y0 = h - strip - 0.3 * margin;
         for j in 0..k {
             let i = j * (shots.len() - 1) / (k - 1).max(1);
-            let vp = (
-                margin + j as f64 * cell + 6.0 * SS as f64,
-                y0 + 18.0 * SS as f64,
-                cell - 12.0 * SS as f64,
-                strip - 24.0 * SS as f64,
-            );
-            let mut cellpic = Picture::new(w, h, hex(0xffffff));
-            let f = Fit2::new(&every, vp);
-            draw_state(&mut cellpic, &f, tris, rest, &shots[i].1, view, false);
-            // copy the cell's viewport
-            for py in (vp.1 as usize)..((vp.1 + vp.3) as usize).min(h) {
-                for px in (vp.0 as usize)..((vp.0 + vp.2) as usize).min(w) {
-                    pic.px[py * w + px] = cellpic.px[py * w + px];
-                }
-            }
-            pic.text(
-                vp.0 as i64,
-                y0 as i64,
-                &format!("frame {}", shots[i].0),
-                SS as i64,
-                hex(0x404040),
-            );
+            let (cw, ch) = (0.92 * cell, strip - 1.6 * label);
+            let mut card = Picture::new(cw as usize, ch as usize, hex(0xffffff));
+            let f = Fit2::new(&every, (4.0, 4.0, cw - 8.0, ch - 8.0));
+            let whole = (0.0, 0.0, cw, ch);
+            draw_state(&mut card, &f, tris, rest, &shots[i].1, view, (whole, false));
+            let cx = margin + j as f64 * cell + 0.04 * cell;
+            pic.paste(&card, cx as i64, (y0 + 1.6 * label) as i64);
+            let text = format!("frame {}", shots[i].0);
+            pic.text(cx, y0, &text, label, hex(0x404040), Orient::Across);
         }
     }
-    pic.downsample(SS)
+    pic
 }

@@ -1,13 +1,19 @@
-//! A small software rasteriser: a perspective camera fitted to the points
-//! it must show, and z-buffered triangle filling with a per-pixel shader.
+//! A small software rasteriser for shaded 3D surfaces: a perspective camera
+//! fitted to the points it must show, and z-buffered triangle filling with a
+//! per-pixel shader into a supersampled layer ([`SS`]× per axis), which is
+//! box-filtered down onto the picture — anti-aliased silhouettes and edges
+//! (tiny-skia has no depth test, and a closed surface drawn in painter's
+//! order would leak its back faces through anti-aliased seams).
 //!
-//! Triangles are filled with edge functions at pixel centres; the shader
-//! receives the barycentric coordinates and the pixel distance to each
+//! Triangles are filled with edge functions at sample centres; the shader
+//! receives the barycentric coordinates and the sample distance to each
 //! edge (for wireframe overlays). Depth is interpolated linearly in screen
 //! space, which is exact enough for a depth test of small triangles.
 
 use super::image::{Picture, Rgb};
 
+/// Supersampling factor of a layer, per axis (9 samples per pixel).
+pub(crate) const SS: usize = 3;
 /// 3-vector helpers.
 pub fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
@@ -116,46 +122,113 @@ impl Camera {
     }
 }
 
-/// A depth buffer matching a picture, with a clip rectangle.
-pub struct ZBuffer {
+/// A supersampled RGBA layer with a depth buffer, covering the picture
+/// rectangle `origin + [0, w) × [0, h)` (whole pixels).
+pub struct Layer {
+    origin: (i64, i64),
+    /// Size in samples.
     w: usize,
-    z: Vec<f64>,
-    /// Pixels outside [x0, x1) × [y0, y1) are never drawn.
-    clip: (i64, i64, i64, i64),
+    h: usize,
+    /// Premultiplied colour and opacity of each sample.
+    px: Vec<[f32; 4]>,
+    z: Vec<f32>,
 }
 
-impl ZBuffer {
-    /// Everything infinitely far; the whole picture drawable.
-    pub fn new(pic: &Picture) -> Self {
-        ZBuffer {
-            w: pic.w,
-            z: vec![f64::INFINITY; pic.w * pic.h],
-            clip: (0, 0, pic.w as i64, pic.h as i64),
+impl Layer {
+    /// A transparent layer over the picture viewport `(x, y, w, h)` (pixels).
+    pub fn new(vp: (f64, f64, f64, f64)) -> Self {
+        let origin = (vp.0.floor() as i64, vp.1.floor() as i64);
+        let (w, h) = (vp.2.max(1.0) as usize * SS, vp.3.max(1.0) as usize * SS);
+        Layer {
+            origin,
+            w,
+            h,
+            px: vec![[0.0; 4]; w * h],
+            z: vec![f32::INFINITY; w * h],
         }
     }
 
-    /// Only the viewport `(x, y, w, h)` drawable.
-    pub fn clipped(pic: &Picture, vp: (f64, f64, f64, f64)) -> Self {
-        let mut z = ZBuffer::new(pic);
-        z.clip = (
-            vp.0.max(0.0) as i64,
-            vp.1.max(0.0) as i64,
-            ((vp.0 + vp.2) as i64).min(pic.w as i64),
-            ((vp.1 + vp.3) as i64).min(pic.h as i64),
-        );
-        z
+    /// The layer in its own (sample) coordinates, for [`Camera::fit`],
+    /// shrunk by `pad` pixels on every side.
+    pub fn viewport(&self, pad: f64) -> (f64, f64, f64, f64) {
+        let p = pad * SS as f64;
+        (p, p, self.w as f64 - 2.0 * p, self.h as f64 - 2.0 * p)
+    }
+
+    /// Size in samples.
+    pub fn size(&self) -> (f64, f64) {
+        (self.w as f64, self.h as f64)
+    }
+
+    /// Scale the colour of the covered samples by `f` (a shadow).
+    pub fn darken(&mut self, covered: &[bool], f: f32) {
+        for (p, m) in self.px.iter_mut().zip(covered) {
+            if *m {
+                for c in &mut p[..3] {
+                    *c *= f;
+                }
+            }
+        }
+    }
+
+    /// Number of samples.
+    pub fn samples(&self) -> usize {
+        self.px.len()
+    }
+
+    /// Box-filter the layer down to pixels and draw it over `pic` (source-over).
+    pub fn composite(&self, pic: &mut Picture) {
+        let (w, h) = (self.w / SS, self.h / SS);
+        let (pw, ph) = (pic.width() as i64, pic.height() as i64);
+        let inv = 1.0 / (SS * SS) as f32;
+        let px = pic.pixmap_mut().pixels_mut();
+        for y in 0..h {
+            for x in 0..w {
+                let (tx, ty) = (self.origin.0 + x as i64, self.origin.1 + y as i64);
+                if tx < 0 || ty < 0 || tx >= pw || ty >= ph {
+                    continue;
+                }
+                let mut acc = [0.0f32; 4];
+                for dy in 0..SS {
+                    let row = (y * SS + dy) * self.w + x * SS;
+                    for p in &self.px[row..row + SS] {
+                        for c in 0..4 {
+                            acc[c] += p[c];
+                        }
+                    }
+                }
+                let a = acc[3] * inv;
+                if a <= 0.0 {
+                    continue;
+                }
+                let d = &mut px[(ty * pw + tx) as usize];
+                let k = 1.0 - a;
+                let ch = |s: f32, dst: u8| {
+                    (s * inv * 255.0 + dst as f32 * k).round().clamp(0.0, 255.0) as u8
+                };
+                let al = ch(acc[3], d.alpha());
+                if let Some(p) = tiny_skia::PremultipliedColorU8::from_rgba(
+                    ch(acc[0], d.red()).min(al),
+                    ch(acc[1], d.green()).min(al),
+                    ch(acc[2], d.blue()).min(al),
+                    al,
+                ) {
+                    *d = p;
+                }
+            }
+        }
     }
 }
 
-/// Call `f(pixel index)` for every pixel of a screen-space triangle that
+/// Call `f(sample index)` for every sample of a screen-space triangle that
 /// passes the depth test (nothing is written).
-pub fn cover(zb: &ZBuffer, p: [[f64; 3]; 3], mut f: impl FnMut(usize)) {
-    rasterize(zb, p, |k, _, _, _| f(k));
+pub fn cover(layer: &Layer, p: [[f64; 3]; 3], mut f: impl FnMut(usize)) {
+    rasterize(layer, p, |k, _, _, _| f(k));
 }
 
-/// Visit the covered pixels passing the depth test: `visit(k, z, bary, edge_px)`.
+/// Visit the covered samples passing the depth test: `visit(k, z, bary, edge_dist)`.
 fn rasterize(
-    zb: &ZBuffer,
+    layer: &Layer,
     p: [[f64; 3]; 3],
     mut visit: impl FnMut(usize, f64, [f64; 3], [f64; 3]),
 ) {
@@ -164,21 +237,21 @@ fn rasterize(
     if area.abs() < 1e-12 || !area.is_finite() {
         return;
     }
-    let (cx0, cy0, cx1, cy1) = zb.clip;
-    let x0 = (p.iter().map(|q| q[0]).fold(f64::INFINITY, f64::min).floor() as i64).max(cx0);
-    let x1 = (p
-        .iter()
-        .map(|q| q[0])
-        .fold(f64::NEG_INFINITY, f64::max)
-        .ceil() as i64)
-        .min(cx1 - 1);
-    let y0 = (p.iter().map(|q| q[1]).fold(f64::INFINITY, f64::min).floor() as i64).max(cy0);
-    let y1 = (p
-        .iter()
-        .map(|q| q[1])
-        .fold(f64::NEG_INFINITY, f64::max)
-        .ceil() as i64)
-        .min(cy1 - 1);
+    let lo = |c: usize| p.iter().map(|q| q[c]).fold(f64::INFINITY, f64::min).floor();
+    let hi = |c: usize| {
+        p.iter()
+            .map(|q| q[c])
+            .fold(f64::NEG_INFINITY, f64::max)
+            .ceil()
+    };
+    let x0 = lo(0).max(0.0) as usize;
+    let y0 = lo(1).max(0.0) as usize;
+    let x1 = hi(0).min(layer.w as f64 - 1.0);
+    let y1 = hi(1).min(layer.h as f64 - 1.0);
+    if x1 < 0.0 || y1 < 0.0 {
+        return;
+    }
+    let (x1, y1) = (x1 as usize, y1 as usize);
     // edge i is opposite corner i
     let edge_len: [f64; 3] = std::array::from_fn(|i| {
         let (a, b) = (p[(i + 1) % 3], p[(i + 2) % 3]);
@@ -197,8 +270,8 @@ fn rasterize(
                 continue;
             }
             let z = e[0] * p[0][2] + e[1] * p[1][2] + e[2] * p[2][2];
-            let k = y as usize * zb.w + x as usize;
-            if z >= zb.z[k] {
+            let k = y * layer.w + x;
+            if z as f32 >= layer.z[k] {
                 continue;
             }
             let dist: [f64; 3] = std::array::from_fn(|i| e[i] * area.abs() / edge_len[i]);
@@ -207,23 +280,24 @@ fn rasterize(
     }
 }
 
-/// Fill a screen-space triangle (`[x, y, depth]` per corner) with a z-test.
-/// `shade(bary, edge_px)` returns the colour or `None` to skip the pixel.
+/// Fill a screen-space triangle (`[x, y, depth]` per corner, in samples)
+/// with a z-test. `shade(bary, edge_dist)` returns the colour and opacity,
+/// or `None` to skip the sample.
 pub fn triangle(
-    pic: &mut Picture,
-    zb: &mut ZBuffer,
+    layer: &mut Layer,
     p: [[f64; 3]; 3],
-    mut shade: impl FnMut([f64; 3], [f64; 3]) -> Option<Rgb>,
+    mut shade: impl FnMut([f64; 3], [f64; 3]) -> Option<(Rgb, f32)>,
 ) {
-    let mut hits: Vec<(usize, f64, Rgb)> = Vec::new();
-    rasterize(zb, p, |k, z, e, dist| {
-        if let Some(c) = shade(e, dist) {
-            hits.push((k, z, c));
+    let mut hits: Vec<(usize, f64, Rgb, f32)> = Vec::new();
+    rasterize(layer, p, |k, z, e, dist| {
+        if let Some((c, a)) = shade(e, dist) {
+            hits.push((k, z, c, a));
         }
     });
-    for (k, z, c) in hits {
-        zb.z[k] = z;
-        pic.px[k] = c;
+    for (k, z, c, a) in hits {
+        layer.z[k] = z as f32;
+        let c = c.map(|v| v.clamp(0.0, 1.0) * a);
+        layer.px[k] = [c[0], c[1], c[2], a];
     }
 }
 
@@ -234,13 +308,21 @@ mod tests {
     #[test]
     fn nearer_triangle_wins_and_camera_fits_points() {
         let mut pic = Picture::new(20, 20, [0.0; 3]);
-        let mut zb = ZBuffer::new(&pic);
-        let far = [[0.0, 0.0, 2.0], [20.0, 0.0, 2.0], [0.0, 20.0, 2.0]];
-        let near = [[0.0, 0.0, 1.0], [20.0, 0.0, 1.0], [0.0, 20.0, 1.0]];
-        triangle(&mut pic, &mut zb, near, |_, _| Some([1.0, 0.0, 0.0]));
-        triangle(&mut pic, &mut zb, far, |_, _| Some([0.0, 1.0, 0.0]));
-        assert_eq!(pic.px[2 * 20 + 2], [1.0, 0.0, 0.0]);
-        assert_eq!(pic.px[19 * 20 + 19], [0.0; 3]);
+        let mut layer = Layer::new((0.0, 0.0, 20.0, 20.0));
+        let n = 20.0 * SS as f64;
+        let far = [[0.0, 0.0, 2.0], [n, 0.0, 2.0], [0.0, n, 2.0]];
+        let near = [[0.0, 0.0, 1.0], [n, 0.0, 1.0], [0.0, n, 1.0]];
+        triangle(&mut layer, near, |_, _| Some(([1.0, 0.0, 0.0], 1.0)));
+        triangle(&mut layer, far, |_, _| Some(([0.0, 1.0, 0.0], 1.0)));
+        layer.composite(&mut pic);
+        assert_eq!(pic.rgb(2, 2), [255, 0, 0]);
+        assert_eq!(pic.rgb(19, 19), [0; 3]);
+        // the hypotenuse crosses pixels: partly covered ones are mixed (anti-aliased)
+        let edge: Vec<[u8; 3]> = (0..20).map(|x| pic.rgb(x, 19 - x)).collect();
+        assert!(
+            edge.iter().any(|c| c[0] > 40 && c[0] < 215),
+            "no intermediate shade on the edge: {edge:?}"
+        );
         let pts = [[-1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
         let cam = Camera::fit(
             [0.0; 3],

@@ -2,9 +2,9 @@
 
 use ecc_mesh::tet_boundary_faces;
 
-use super::image::{Picture, Rgb, hex, mix, scale};
-use super::raster::{Camera, ZBuffer, cover, cross, dot, normalize, sub, triangle};
-use super::{SS, View, title};
+use super::image::{Orient, Picture, Rgb, hex, scale};
+use super::raster::{Camera, Layer, SS, cover, cross, dot, normalize, sub, triangle};
+use super::{View, title, title_height};
 
 const BODY: u32 = 0x6f9fd8;
 const HANDLE: u32 = 0xee7d3b;
@@ -69,13 +69,7 @@ fn vertex_normals(faces: &[[usize; 3]], x: &[[f64; 3]]) -> Vec<[f64; 3]> {
     n.into_iter().map(normalize).collect()
 }
 
-pub(crate) fn draw_body(
-    pic: &mut Picture,
-    zb: &mut ZBuffer,
-    cam: &Camera,
-    s: &Scene3<'_>,
-    up: [f64; 3],
-) {
+pub(crate) fn draw_body(layer: &mut Layer, cam: &Camera, s: &Scene3<'_>, up: [f64; 3]) {
     let normals = vertex_normals(s.faces, s.x);
     let fwd = cam.forward();
     let side = normalize(cross(fwd, up));
@@ -98,6 +92,7 @@ pub(crate) fn draw_body(
         .sum::<f64>()
         / s.faces.len().clamp(1, 2000) as f64;
     let wire = s.wire && mean_edge > 9.0 * SS as f64;
+    let half_line = 0.55 * SS as f64;
     for f in s.faces {
         let p = [scr[f[0]], scr[f[1]], scr[f[2]]];
         let hl = f
@@ -111,7 +106,7 @@ pub(crate) fn draw_body(
         let centroid: [f64; 3] =
             std::array::from_fn(|i| (s.x[f[0]][i] + s.x[f[1]][i] + s.x[f[2]][i]) / 3.0);
         let to_eye = cam.eye_dir(centroid);
-        triangle(pic, zb, p, |b, dist| {
+        triangle(layer, p, |b, dist| {
             let mut n: [f64; 3] = normalize(std::array::from_fn(|i| {
                 b[0] * nrm[0][i] + b[1] * nrm[1][i] + b[2] * nrm[2][i]
             }));
@@ -130,24 +125,16 @@ pub(crate) fn draw_body(
             }
             let mut out = scale(c, diffuse as f32);
             out = out.map(|x| x + spec as f32);
-            if wire && dist.iter().fold(f64::INFINITY, |m, d| m.min(*d)) < 0.9 * SS as f64 {
+            if wire && dist.iter().fold(f64::INFINITY, |m, d| m.min(*d)) < half_line {
                 out = scale(out, 0.72);
             }
-            Some(out)
+            Some((out, 1.0))
         });
     }
 }
 
 /// A checker floor on the plane n·x = h around the body.
-fn draw_ground(
-    pic: &mut Picture,
-    zb: &mut ZBuffer,
-    cam: &Camera,
-    n: [f64; 3],
-    h: f64,
-    centre: [f64; 3],
-    r: f64,
-) {
+fn draw_ground(layer: &mut Layer, cam: &Camera, n: [f64; 3], h: f64, centre: [f64; 3], r: f64) {
     let o: [f64; 3] = std::array::from_fn(|i| centre[i] - (dot(centre, n) - h) * n[i]);
     let axes = [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]];
     let a = axes
@@ -168,18 +155,26 @@ fn draw_ground(
         corner(-ext, ext),
     ];
     let st = [(-ext, -ext), (ext, -ext), (ext, ext), (-ext, ext)];
-    let bg = hex(0xf7f7f7);
+    let (lw, lh) = layer.size();
+    let border = 0.08 * lw.min(lh);
     for tri in [[0, 1, 2], [0, 2, 3]] {
         let p = tri.map(|k| cam.project(q[k]));
         let uv = tri.map(|k| st[k]);
-        triangle(pic, zb, p, |b, _| {
+        triangle(layer, p, |b, _| {
+            // fade out where the floor meets the edge of the layer
+            let (sx, sy) = (
+                b[0] * p[0][0] + b[1] * p[1][0] + b[2] * p[2][0],
+                b[0] * p[0][1] + b[1] * p[1][1] + b[2] * p[2][1],
+            );
+            let edge = sx.min(sy).min(lw - sx).min(lh - sy) / border;
+            let frame = edge.clamp(0.0, 1.0) as f32;
             let s = b[0] * uv[0].0 + b[1] * uv[1].0 + b[2] * uv[2].0;
             let t = b[0] * uv[0].1 + b[1] * uv[1].1 + b[2] * uv[2].1;
             let odd = ((s / tile).floor() as i64 + (t / tile).floor() as i64).rem_euclid(2) == 1;
             let c = if odd { hex(0xc9ccd1) } else { hex(0xe3e5e8) };
-            // fade out towards the edge of the floor
+            // fade out into the background towards the edge of the floor
             let d = (s.abs().max(t.abs()) / ext).clamp(0.0, 1.0);
-            Some(mix(c, bg, (d * d) as f32))
+            Some((c, (1.0 - (d * d) as f32) * frame))
         });
     }
 }
@@ -187,15 +182,14 @@ fn draw_ground(
 /// Darken the ground where the body's vertical projection falls (a contact
 /// shadow): faces projected along `n` onto n·x = h, drawn into a mask.
 fn draw_shadow(
-    pic: &mut Picture,
-    zb: &ZBuffer,
+    layer: &mut Layer,
     cam: &Camera,
     faces: &[[usize; 3]],
     x: &[[f64; 3]],
     n: [f64; 3],
     h: f64,
 ) {
-    let mut mask = vec![false; pic.px.len()];
+    let mut mask = vec![false; layer.samples()];
     for f in faces {
         let p = f.map(|v| {
             let d = dot(x[v], n) - h;
@@ -204,113 +198,101 @@ fn draw_shadow(
             s[2] *= 1.0 - 1e-4; // just in front of the floor
             s
         });
-        cover(zb, p, |k| mask[k] = true);
+        cover(layer, p, |k| mask[k] = true);
     }
-    for (px, m) in pic.px.iter_mut().zip(&mask) {
-        if *m {
-            *px = scale(*px, 0.72);
-        }
-    }
+    layer.darken(&mask, 0.72);
 }
 
-/// The boundary of a tet mesh in each shot; the last shot is the main panel.
+/// One shot of the body (with ground and shadow) into a viewport of `pic`.
+#[allow(clippy::too_many_arguments)]
+fn draw_shot(
+    pic: &mut Picture,
+    vp: (f64, f64, f64, f64),
+    fit: &[[f64; 3]],
+    faces: &[[usize; 3]],
+    x: &[[f64; 3]],
+    view: &View<'_>,
+    sphere: ([f64; 3], f64),
+    wire: bool,
+) {
+    let (centre, r) = sphere;
+    let (dir, up) = orbit(view.up, view.camera.0, view.camera.1);
+    let mut layer = Layer::new(vp);
+    let cam = Camera::fit(centre, dir, up, 6.0 * r, fit, layer.viewport(4.0));
+    if let Some((n, gh)) = view.ground {
+        draw_ground(&mut layer, &cam, n, gh, centre, r);
+        draw_shadow(&mut layer, &cam, faces, x, n, gh);
+    }
+    let scene = Scene3 {
+        faces,
+        x,
+        highlight: view.highlight,
+        checker: None,
+        wire,
+    };
+    draw_body(&mut layer, &cam, &scene, up);
+    layer.composite(pic);
+}
+
+/// The boundary of a tet mesh in each shot; the last shot is the main panel,
+/// with a strip of up to six thumbnails below when there are more than two.
 pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View<'_>) -> Picture {
-    let (w, h) = (view.size.0 * SS, view.size.1 * SS);
-    let mut pic = Picture::new(w, h, [1.0; 3]);
+    let (w, h) = (view.size.0 as f64, view.size.1 as f64);
+    let mut pic = Picture::new(view.size.0, view.size.1, [1.0; 3]);
     pic.gradient(hex(0xe9eef5), hex(0xfbfbfb));
     let faces = tet_boundary_faces(tets);
     let all: Vec<&[[f64; 3]]> = shots.iter().map(|(_, x)| x.as_slice()).collect();
     let Some((last_frame, last)) = shots.last() else {
-        return pic.downsample(SS);
+        return pic;
     };
-    let (centre, r) = bounds(&all);
-    let (dir, up) = orbit(view.up, view.camera.0, view.camera.1);
-    let top = 44.0 * SS as f64;
-    let strip = if shots.len() > 2 {
-        0.26 * h as f64
-    } else {
-        0.0
-    };
-    let margin = 24.0 * SS as f64;
+    let sphere = bounds(&all);
+    let top = title_height(h);
+    let strip = if shots.len() > 2 { 0.26 * h } else { 0.0 };
+    let margin = 0.025 * w.min(h) + 4.0;
     let every: Vec<[f64; 3]> = all.iter().flat_map(|s| s.iter().copied()).collect();
-    let main_vp = (
-        margin,
-        top,
-        w as f64 - 2.0 * margin,
-        h as f64 - top - strip - margin,
-    );
+    let main_vp = (margin, top, w - 2.0 * margin, h - top - strip - margin);
     // the main panel frames the result (with a ground: the whole motion
     // above it); thumbnails share one framing of all shots
     let main_pts: &[[f64; 3]] = if view.ground.is_some() { &every } else { last };
-    let cam = Camera::fit(centre, dir, up, 6.0 * r, main_pts, main_vp);
-    let mut zb = ZBuffer::new(&pic);
-    if let Some((n, gh)) = view.ground {
-        draw_ground(&mut pic, &mut zb, &cam, n, gh, centre, r);
-        draw_shadow(&mut pic, &zb, &cam, &faces, last, n, gh);
-    }
-    let scene = Scene3 {
-        faces: &faces,
-        x: last,
-        highlight: view.highlight,
-        checker: None,
-        wire: true,
-    };
-    draw_body(&mut pic, &mut zb, &cam, &scene, up);
+    draw_shot(
+        &mut pic, main_vp, main_pts, &faces, last, view, sphere, true,
+    );
     title(
         &mut pic,
         view.title,
         &format!(
-            "frame {last_frame}   {} tets, {} boundary faces",
+            "frame {last_frame}, {} tets, {} boundary faces",
             tets.len(),
             faces.len()
         ),
     );
     if strip > 0.0 {
         let k = shots.len().min(6);
-        let pick: Vec<usize> = (0..k)
-            .map(|i| i * (shots.len() - 1) / (k - 1).max(1))
-            .collect();
-        let cell = (w as f64 - 2.0 * margin) / k as f64;
-        let y0 = h as f64 - strip - 0.3 * margin;
-        for (j, &i) in pick.iter().enumerate() {
-            let vp = (
-                margin + j as f64 * cell + 6.0 * SS as f64,
-                y0 + 18.0 * SS as f64,
-                cell - 12.0 * SS as f64,
-                strip - 24.0 * SS as f64,
+        let cell = (w - 2.0 * margin) / k as f64;
+        let label = (0.022 * h).clamp(11.0, 18.0);
+        let y0 = h - strip - 0.3 * margin;
+        for j in 0..k {
+            let i = j * (shots.len() - 1) / (k - 1).max(1);
+            let card = (
+                margin + j as f64 * cell + 0.04 * cell,
+                y0 + 1.6 * label,
+                0.92 * cell,
+                strip - 1.6 * label,
             );
-            pic.fill_rect(
-                vp.0 as i64,
-                (y0 + 14.0 * SS as f64) as i64,
-                (vp.0 + vp.2) as i64,
-                (y0 + strip) as i64,
-                hex(0xffffff),
+            pic.fill_rect(card.0, card.1, card.2, card.3, hex(0xffffff));
+            draw_shot(
+                &mut pic,
+                card,
+                &every,
+                &faces,
+                &shots[i].1,
+                view,
+                sphere,
+                false,
             );
-            let tcam = Camera::fit(centre, dir, up, 6.0 * r, &every, vp);
-            let mut tz = ZBuffer::clipped(
-                &pic,
-                (vp.0, y0 + 14.0 * SS as f64, vp.2, strip - 14.0 * SS as f64),
-            );
-            if let Some((n, gh)) = view.ground {
-                draw_ground(&mut pic, &mut tz, &tcam, n, gh, centre, r);
-                draw_shadow(&mut pic, &tz, &tcam, &faces, &shots[i].1, n, gh);
-            }
-            let s = Scene3 {
-                faces: &faces,
-                x: &shots[i].1,
-                highlight: view.highlight,
-                checker: None,
-                wire: false,
-            };
-            draw_body(&mut pic, &mut tz, &tcam, &s, up);
-            pic.text(
-                vp.0 as i64,
-                y0 as i64,
-                &format!("frame {}", shots[i].0),
-                SS as i64,
-                hex(0x404040),
-            );
+            let text = format!("frame {}", shots[i].0);
+            pic.text(card.0, y0, &text, label, hex(0x404040), Orient::Across);
         }
     }
-    pic.downsample(SS)
+    pic
 }
