@@ -33,9 +33,9 @@ pub fn params_from_kwargs(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(S
         for (k, v) in kw.iter() {
             let key: String = k.extract()?;
             let name = key.strip_suffix('_').unwrap_or(&key).to_string();
-            let value: f64 = v.extract().map_err(|_| {
-                energy_plain(format!("parameter `{name}` must be a number"))
-            })?;
+            let value: f64 = v
+                .extract()
+                .map_err(|_| energy_plain(format!("parameter `{name}` must be a number")))?;
             out.push((name, value));
         }
     }
@@ -89,12 +89,13 @@ impl PyEnergy {
         let mut sources: Vec<Source> = Vec::new();
         for dim in [2, 3] {
             for stem in builtin::stems(canon, dim) {
-                let Some(text) = builtin::file(&stem) else { continue };
+                let Some(src) = builtin::compiled(&stem) else {
+                    continue;
+                };
                 if sources.iter().any(|s| s.name == stem) {
                     break;
                 }
-                let file = format!("energies/psi/{stem}.psi");
-                let src = ecc_dsl::load_text(text, &file).map_err(|e| load_error(e, Some(text), &stem))?;
+                let src = src.map_err(|e| load_error(e, builtin::file(&stem), &stem))?;
                 if src.module.dim(dim as u8).is_some() {
                     sources.push(src);
                     break;
@@ -107,14 +108,32 @@ impl PyEnergy {
         Self::from_sources(canon.to_string(), sources, params)
     }
 
-    fn from_sources(name: String, sources: Vec<Source>, params: Vec<(String, f64)>) -> PyResult<Self> {
+    fn from_sources(
+        name: String,
+        sources: Vec<Source>,
+        params: Vec<(String, f64)>,
+    ) -> PyResult<Self> {
         let e2 = build::<2>(&sources, &params)?;
         let e3 = build::<3>(&sources, &params)?;
         if e2.is_none() && e3.is_none() {
-            let why: Vec<String> = sources[0].module.skipped.iter().map(|(d, w)| format!("{d}D: {w}")).collect();
-            return Err(energy_plain(format!("`{name}` compiles in no dimension ({})", why.join("; "))));
+            let why: Vec<String> = sources[0]
+                .module
+                .skipped
+                .iter()
+                .map(|(d, w)| format!("{d}D: {w}"))
+                .collect();
+            return Err(energy_plain(format!(
+                "`{name}` compiles in no dimension ({})",
+                why.join("; ")
+            )));
         }
-        Ok(PyEnergy { name, sources, params, e2, e3 })
+        Ok(PyEnergy {
+            name,
+            sources,
+            params,
+            e2,
+            e3,
+        })
     }
 
     /// The energy in dimension `D`, shared (solves hold it across threads).
@@ -129,7 +148,13 @@ impl PyEnergy {
         };
         e.and_then(|e| e.downcast_ref::<Option<Arc<dyn Energy<D>>>>())
             .and_then(|e| e.clone())
-            .ok_or_else(|| energy_plain(format!("`{}` has no {D}D version (it exists in {})", self.name, self.dims_text())))
+            .ok_or_else(|| {
+                energy_plain(format!(
+                    "`{}` has no {D}D version (it exists in {})",
+                    self.name,
+                    self.dims_text()
+                ))
+            })
     }
 
     fn dims_text(&self) -> String {
@@ -146,7 +171,9 @@ impl PyEnergy {
     }
 
     fn source_for(&self, dim: Option<usize>) -> PyResult<&Source> {
-        let Some(d) = dim else { return Ok(&self.sources[0]) };
+        let Some(d) = dim else {
+            return Ok(&self.sources[0]);
+        };
         let d8 = u8::try_from(d).unwrap_or(0);
         self.sources
             .iter()
@@ -168,7 +195,8 @@ impl PyEnergy {
     fn new(text: &str, name: &str, params: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
         let params = params_from_kwargs(params)?;
         let file = format!("<{name}>");
-        let mut src = ecc_dsl::load_text(text, &file).map_err(|e| load_error(e, Some(text), name))?;
+        let mut src =
+            ecc_dsl::load_text(text, &file).map_err(|e| load_error(e, Some(text), name))?;
         src.name = name.to_string();
         Self::from_sources(name.to_string(), vec![src], params)
     }
@@ -242,7 +270,9 @@ impl PyEnergy {
         match sigma.len() {
             2 => Ok(self.get::<2>()?.psi(&[sigma[0], sigma[1]])),
             3 => Ok(self.get::<3>()?.psi(&[sigma[0], sigma[1], sigma[2]])),
-            n => Err(energy_plain(format!("sigma must have 2 or 3 entries, got {n}"))),
+            n => Err(energy_plain(format!(
+                "sigma must have 2 or 3 entries, got {n}"
+            ))),
         }
     }
 
@@ -262,7 +292,9 @@ impl PyEnergy {
         let arr = np
             .call_method1("asarray", (f, np.getattr("float64")?))
             .map_err(|e| energy_plain(format!("F is not a numeric array: {e}")))?;
-        let arr = arr.cast_into::<PyArrayDyn<f64>>().map_err(|e| energy_plain(e.to_string()))?;
+        let arr = arr
+            .cast_into::<PyArrayDyn<f64>>()
+            .map_err(|e| energy_plain(e.to_string()))?;
         let ro = arr.readonly();
         let shape = ro.shape().to_vec();
         let (single, n, d) = match shape.as_slice() {
@@ -287,7 +319,12 @@ impl PyEnergy {
     }
 
     fn __repr__(&self) -> String {
-        format!("ecc.Energy({:?}, dims={:?}, params={:?})", self.name, self.dim_list(), self.params())
+        format!(
+            "ecc.Energy({:?}, dims={:?}, params={:?})",
+            self.name,
+            self.dim_list(),
+            self.params()
+        )
     }
 }
 
@@ -301,7 +338,11 @@ struct Batch {
     eigenvalues: Vec<f64>,
 }
 
-fn eval_all<const D: usize>(e: PyResult<Arc<dyn Energy<D>>>, fs: &[f64], n: usize) -> PyResult<Batch>
+fn eval_all<const D: usize>(
+    e: PyResult<Arc<dyn Energy<D>>>,
+    fs: &[f64],
+    n: usize,
+) -> PyResult<Batch>
 where
     Space<D>: Dim<D>,
 {
@@ -332,11 +373,21 @@ where
 
 impl Batch {
     /// The dict of arrays; `single` drops the leading batch axis.
-    fn into_dict(self, py: Python<'_>, single: bool, n: usize, d: usize) -> PyResult<Bound<'_, PyDict>> {
+    fn into_dict(
+        self,
+        py: Python<'_>,
+        single: bool,
+        n: usize,
+        d: usize,
+    ) -> PyResult<Bound<'_, PyDict>> {
         let dict = PyDict::new(py);
         let d2 = d * d;
         let shaped = |v: Vec<f64>, shape: &[usize]| -> PyResult<Bound<'_, PyArrayDyn<f64>>> {
-            let full: Vec<usize> = if single { shape.to_vec() } else { [&[n], shape].concat() };
+            let full: Vec<usize> = if single {
+                shape.to_vec()
+            } else {
+                [&[n], shape].concat()
+            };
             PyArray1::from_vec(py, v).reshape(full)
         };
         // P[r][c] = ∂Ψ/∂F_rc = gradient[c·d + r] (vec is column-major)
@@ -357,7 +408,10 @@ impl Batch {
         dict.set_item("gradient", shaped(self.gradient, &[d2])?)?;
         dict.set_item("P", shaped(p, &[d, d])?)?;
         dict.set_item("hessian", shaped(self.hessian, &[d2, d2])?)?;
-        dict.set_item("hessian_projected", shaped(self.hessian_projected, &[d2, d2])?)?;
+        dict.set_item(
+            "hessian_projected",
+            shaped(self.hessian_projected, &[d2, d2])?,
+        )?;
         dict.set_item("eigenvalues", shaped(self.eigenvalues, &[d2])?)?;
         Ok(dict)
     }

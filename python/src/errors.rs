@@ -7,7 +7,12 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
-create_exception!(ecc, Error, PyException, "Base class of every error raised by ecc.");
+create_exception!(
+    ecc,
+    Error,
+    PyException,
+    "Base class of every error raised by ecc."
+);
 create_exception!(
     ecc,
     EnergyError,

@@ -16,7 +16,9 @@ fn array<'py, T: numpy::Element + Copy, const K: usize>(
     v: &[[T; K]],
 ) -> PyResult<Bound<'py, PyAny>> {
     let data: Vec<T> = v.iter().flatten().copied().collect();
-    Ok(PyArray1::from_vec(py, data).reshape([v.len(), K])?.into_any())
+    Ok(PyArray1::from_vec(py, data)
+        .reshape([v.len(), K])?
+        .into_any())
 }
 
 /// Low-level reader (use `ecc.read_mesh`).

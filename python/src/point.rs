@@ -48,7 +48,12 @@ where
     out.sigma.copy_from_slice(&svd.sigma);
     *out.psi = s.psi;
     if s.psi == f64::INFINITY {
-        for buf in [out.gradient, out.hessian, out.hessian_projected, out.eigenvalues] {
+        for buf in [
+            out.gradient,
+            out.hessian,
+            out.hessian_projected,
+            out.eigenvalues,
+        ] {
             buf.fill(f64::NAN);
         }
         return;

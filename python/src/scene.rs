@@ -24,7 +24,9 @@ fn load_error(e: LoadError) -> EnergyError {
     match e {
         LoadError::Param { source, .. } => EnergyError::Param(source.to_string()),
         LoadError::NoSuchDim { .. } => EnergyError::Dimension(e.to_string()),
-        LoadError::Syntax { rendered, .. } => EnergyError::File(format!("\n{}", rendered.trim_end())),
+        LoadError::Syntax { rendered, .. } => {
+            EnergyError::File(format!("\n{}", rendered.trim_end()))
+        }
         other => EnergyError::File(other.to_string()),
     }
 }
@@ -43,16 +45,19 @@ where
     };
     let canon = builtin::canonical(name).ok_or_else(unknown)?;
     for stem in builtin::stems(canon, D) {
-        let Some(text) = builtin::file(&stem) else { continue };
-        let file = format!("energies/psi/{stem}.psi");
-        let src = ecc_dsl::load_text(text, &file).map_err(|e| EnergyError::File(e.to_string()))?;
+        let Some(src) = builtin::compiled(&stem) else {
+            continue;
+        };
+        let src = src.map_err(|e| EnergyError::File(e.to_string()))?;
         if src.module.dim(D as u8).is_some() {
-            let e = ecc_interp::energy_from_module::<D>(&src.module, &file, req.params)
+            let e = ecc_interp::energy_from_module::<D>(&src.module, &src.shown, req.params)
                 .map_err(load_error)?;
             return Ok(Box::new(e));
         }
     }
-    Err(EnergyError::Dimension(format!("`{canon}` has no {D}D version")))
+    Err(EnergyError::Dimension(format!(
+        "`{canon}` has no {D}D version"
+    )))
 }
 
 impl EnergySource for PyEnergies {

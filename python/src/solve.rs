@@ -65,7 +65,9 @@ fn result_dict<'py>(py: Python<'py>, r: &NewtonResult) -> PyResult<Bound<'py, Py
 
 fn flat<'py, const K: usize>(py: Python<'py>, v: &[[f64; K]]) -> PyResult<Bound<'py, PyAny>> {
     let data: Vec<f64> = v.iter().flatten().copied().collect();
-    Ok(PyArray1::from_vec(py, data).reshape([v.len(), K])?.into_any())
+    Ok(PyArray1::from_vec(py, data)
+        .reshape([v.len(), K])?
+        .into_any())
 }
 
 /// Low-level parameterisation (use `ecc.parameterize`).
@@ -86,9 +88,13 @@ pub fn parameterize<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let pos = positions("V", &v)?;
     let tris = cells::<3>("F", &f, pos.len())?;
-    let mesh = validate_tri(TriMesh::new(pos, tris), false, &ValidationOptions::default())
-        .map_err(mesh_error)?
-        .mesh;
+    let mesh = validate_tri(
+        TriMesh::new(pos, tris),
+        false,
+        &ValidationOptions::default(),
+    )
+    .map_err(mesh_error)?
+    .mesh;
     let e = energy_arg(energy)?.get().get::<2>()?;
     let mut opts = ParamOptions {
         normalize_area,
