@@ -195,7 +195,8 @@ pub enum ValidationError {
         element: usize,
         /// Its signed area (planar) / unsigned area (surface) / signed volume.
         measure: f64,
-        /// The absolute tolerance used (`rest_measure_tolerance · L^d`).
+        /// The absolute tolerance used (`DEGENERATE_REL_TOL · L^d / den`,
+        /// `L` the element's longest edge, `den` = 2 or 6).
         tolerance: f64,
         /// 2 for triangles, 3 for tets.
         dimension: usize,
@@ -215,6 +216,30 @@ pub enum ValidationError {
         count: usize,
         /// Number of elements.
         total: usize,
+        /// 2 for triangles, 3 for tets.
+        dimension: usize,
+    },
+    /// Elements whose quality (rest measure ÷ longest edge^d) is below
+    /// `ValidationOptions::min_quality`.
+    #[error(
+        "{count} of {total} elements have a quality (rest {} ÷ longest edge{}) below the minimum {min_quality:e}: elements {}; the worst is element {worst} ({quality:e})",
+        if *dimension == 2 { "area" } else { "volume" },
+        if *dimension == 2 { "²" } else { "³" },
+        id_list(*count, first)
+    )]
+    LowQualityElements {
+        /// How many.
+        count: usize,
+        /// Number of elements.
+        total: usize,
+        /// The first few ids (at most 10).
+        first: Vec<usize>,
+        /// The element of lowest quality.
+        worst: usize,
+        /// Its quality.
+        quality: f64,
+        /// The minimum asked for.
+        min_quality: f64,
         /// 2 for triangles, 3 for tets.
         dimension: usize,
     },
@@ -268,6 +293,12 @@ pub enum ValidationError {
         /// The first few ids (at most 10).
         first: Vec<usize>,
     },
+}
+
+fn id_list(count: usize, first: &[usize]) -> String {
+    let ids: Vec<String> = first.iter().map(|v| v.to_string()).collect();
+    let more = if count > first.len() { ", …" } else { "" };
+    format!("{}{more}", ids.join(", "))
 }
 
 fn unreferenced(count: usize, first: &[usize]) -> String {

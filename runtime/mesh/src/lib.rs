@@ -108,5 +108,7 @@ pub use io::{
 };
 pub use topology::{Components, boundary_loops, components, tet_boundary_faces};
 pub use tutte::{TutteEmbedding, tutte_embedding, tutte_embedding_report};
-pub use types::{AnyMesh, TetMesh, TriMesh, TutteWeights, Validated, ValidationOptions};
+pub use types::{
+    AnyMesh, DEGENERATE_REL_TOL, TetMesh, TriMesh, TutteWeights, Validated, ValidationOptions,
+};
 pub use validate::{validate_tet, validate_tri};

@@ -63,6 +63,12 @@ impl AnyMesh {
     }
 }
 
+/// A rest element is degenerate when `|det Dm| ≤ DEGENERATE_REL_TOL · L^d`
+/// (`L` its longest edge): the same rule and value as the element library's
+/// `ecc_runtime::element::DEGENERATE_REL_TOL` (a test in ecc-fem keeps them
+/// equal), so a mesh that validates is one the library accepts.
+pub const DEGENERATE_REL_TOL: f64 = 1e-12;
+
 /// What [`crate::validate_tri`] / [`crate::validate_tet`] require beyond the
 /// always-on checks (indices in range, no repeated vertex in an element, no
 /// duplicate element, finite coordinates, no degenerate or inverted element).
@@ -78,14 +84,19 @@ pub struct ValidationOptions {
     pub require_oriented: bool,
     /// Reject meshes with more than one connected component.
     pub require_single_component: bool,
-    /// An element whose rest measure `m` satisfies `|m| ≤ tol · L^d` is
-    /// degenerate, where `L` is the bounding-box diagonal of the referenced
-    /// vertices and `d` the element dimension (2 for triangles, 3 for
-    /// tets). The default `1e-12` sits far above round-off (`~1e-16 · L^d`)
-    /// and below the smallest real elements in the test data (camelhead's
-    /// folded faces: `2.6e-8 · L²`; hand.mesh's worst sliver:
-    /// `5.4e-11 · L³`). See [`crate::validate`].
-    pub rest_measure_tolerance: f64,
+    /// Refuse elements whose quality `q = |m| / L^d` (rest measure over its
+    /// longest edge to the power `d`, 2 for triangles, 3 for tets; √3/4 for
+    /// an equilateral triangle, 1/(6√2) for a regular tet) is below this,
+    /// naming them ([`crate::ValidationError::LowQualityElements`]). The
+    /// default `0` refuses only degenerate elements (`|det Dm| ≤ 1e-12·L^d`,
+    /// [`DEGENERATE_REL_TOL`]), exactly what the element library refuses.
+    /// Must be finite and ≥ 0 (NaN refuses nothing).
+    pub min_quality: f64,
+    /// Elements with quality below this (and at least `min_quality`) are
+    /// kept with a warning naming them. Default `1e-5`: a triangle whose
+    /// height is below `2e-5` of its longest edge; the shipped meshes' worst
+    /// elements sit above it (hand.mesh: `5.5e-5`).
+    pub sliver_quality: f64,
     /// Drop vertices that no element uses (with a warning, renumbering the
     /// rest; [`Validated::vertex_map`] keeps old → new ids) instead of
     /// rejecting the mesh with [`crate::ValidationError::UnreferencedVertices`].
@@ -100,7 +111,8 @@ impl Default for ValidationOptions {
             require_manifold: false,
             require_oriented: false,
             require_single_component: false,
-            rest_measure_tolerance: 1e-12,
+            min_quality: 0.0,
+            sliver_quality: 1e-5,
             drop_unreferenced: false,
         }
     }

@@ -259,15 +259,26 @@ pub fn load(file: &SceneFile, surface_ok: bool) -> Result<LoadedMesh, SceneError
     } else {
         "mesh"
     };
+    let min_quality = spec.min_quality.unwrap_or(0.0);
+    if !(min_quality.is_finite() && min_quality >= 0.0) {
+        return Err(SceneError::invalid(
+            "mesh.min_quality",
+            format!("must be a finite number ≥ 0, got {min_quality}"),
+        ));
+    }
     // Cropping leaves vertices without elements on purpose.
     let opts = ValidationOptions {
         drop_unreferenced: spec.drop_unreferenced.unwrap_or(false) || spec.crop.is_some(),
+        min_quality,
         ..Default::default()
     };
     let invalid = |e: ecc_mesh::ValidationError| {
         let hint = match e {
             ecc_mesh::ValidationError::UnreferencedVertices { .. } => {
                 " (set `drop_unreferenced = true` in [mesh] to drop unused vertices)"
+            }
+            ecc_mesh::ValidationError::LowQualityElements { .. } => {
+                " (lower or remove `min_quality` in [mesh] to accept them)"
             }
             _ => "",
         };

@@ -80,6 +80,12 @@ pub struct MeshSpec {
     /// are always dropped.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub drop_unreferenced: Option<bool>,
+    /// Refuse elements whose quality (rest area ÷ longest edge², volume ÷
+    /// longest edge³) is below this (the error names them). Default 0:
+    /// only degenerate elements are refused; slivers below 1e-5 are kept
+    /// with a warning.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub min_quality: Option<f64>,
 }
 
 /// Built-in generated shapes (ecc-mesh generators).

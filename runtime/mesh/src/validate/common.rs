@@ -1,8 +1,9 @@
 //! Checks shared by triangle and tet validation.
 
 use crate::error::ValidationError;
-use crate::geometry::bbox_diagonal;
+use crate::geometry::{norm, sub};
 use crate::topology::sort_by_vertex;
+use crate::types::DEGENERATE_REL_TOL;
 
 /// Indices in range and no repeated vertex inside an element.
 pub(crate) fn check_indices<const K: usize>(
@@ -79,53 +80,131 @@ pub(crate) fn check_finite(positions: &[[f64; 3]], used: &[bool]) -> Result<(), 
     Ok(())
 }
 
-/// Bounding-box diagonal of the referenced vertices.
-pub(crate) fn reference_length(positions: &[[f64; 3]], used: &[bool]) -> f64 {
-    bbox_diagonal(
-        positions
-            .iter()
-            .zip(used)
-            .filter(|(_, u)| **u)
-            .map(|(p, _)| *p),
-    )
+/// Longest edge of the element `el`.
+pub(crate) fn longest_edge<const K: usize>(positions: &[[f64; 3]], el: &[usize; K]) -> f64 {
+    let mut l = 0.0f64;
+    for i in 0..K {
+        for j in i + 1..K {
+            l = l.max(norm(sub(positions[el[i]], positions[el[j]])));
+        }
+    }
+    l
 }
 
-/// Check rest measures: `|m| ≤ tol` is degenerate (first one reported);
-/// when `signed`, `m < 0` is inverted (first one and the count reported).
+/// How the rest measures of one mesh are judged (see [`super`]).
+pub(crate) struct MeasureRule {
+    /// 2 for triangles, 3 for tets.
+    pub dimension: usize,
+    /// Measure = det Dm / `den` (2 for triangles, 6 for tets).
+    pub den: f64,
+    /// Signed measures (planar triangles, tets): negative is inverted.
+    pub signed: bool,
+    /// Refuse quality below this (0: only degenerate elements).
+    pub min_quality: f64,
+    /// Warn about quality below this.
+    pub sliver_quality: f64,
+}
+
+/// Elements below a quality threshold: (count, first ids, worst (id, q)).
+#[derive(Default)]
+struct Below {
+    count: usize,
+    first: Vec<usize>,
+    worst: Option<(usize, f64)>,
+}
+
+impl Below {
+    fn add(&mut self, e: usize, q: f64) {
+        self.count += 1;
+        if self.first.len() < 10 {
+            self.first.push(e);
+        }
+        if self.worst.is_none_or(|(_, w)| q < w) {
+            self.worst = Some((e, q));
+        }
+    }
+}
+
+/// Check rest measures `(m, L)` (measure, longest edge) per element, each
+/// against its own edges (scale-invariant, the element library's rule):
+/// degenerate if `m` or `L` is not finite or `|m|·den ≤ 1e-12·L^d` (first
+/// one reported); inverted if `signed` and `m < 0` (first one and the
+/// count); quality `q = |m| / L^d` below `min_quality` refused, below
+/// `sliver_quality` a warning naming the elements.
 pub(crate) fn check_measures(
-    measures: impl Iterator<Item = f64>,
-    tol: f64,
-    signed: bool,
-    dimension: usize,
+    measures: impl Iterator<Item = (f64, f64)>,
+    rule: &MeasureRule,
+    warnings: &mut Vec<String>,
 ) -> Result<(), ValidationError> {
     let mut first_inverted: Option<(usize, f64)> = None;
-    let mut count = 0;
-    let mut total = 0;
-    for (e, m) in measures.enumerate() {
+    let (mut count, mut total) = (0, 0);
+    let (mut refused, mut slivers) = (Below::default(), Below::default());
+    let d = rule.dimension as i32;
+    for (e, (m, l)) in measures.enumerate() {
         total += 1;
-        if m.abs() <= tol || !m.is_finite() {
+        let scale = l.powi(d);
+        let tolerance = DEGENERATE_REL_TOL * scale / rule.den;
+        if !m.is_finite() || !scale.is_finite() || m.abs() <= tolerance {
             return Err(ValidationError::DegenerateElement {
                 element: e,
                 measure: m,
-                tolerance: tol,
-                dimension,
+                tolerance,
+                dimension: rule.dimension,
             });
         }
-        if signed && m < 0.0 {
+        if rule.signed && m < 0.0 {
             count += 1;
             first_inverted.get_or_insert((e, m));
         }
+        let q = m.abs() / scale;
+        if q < rule.min_quality {
+            refused.add(e, q);
+        } else if q < rule.sliver_quality {
+            slivers.add(e, q);
+        }
     }
-    match first_inverted {
-        Some((element, measure)) => Err(ValidationError::InvertedElement {
+    if let Some((element, measure)) = first_inverted {
+        return Err(ValidationError::InvertedElement {
             element,
             measure,
             count,
             total,
-            dimension,
-        }),
-        None => Ok(()),
+            dimension: rule.dimension,
+        });
     }
+    if let Some((worst, quality)) = refused.worst {
+        return Err(ValidationError::LowQualityElements {
+            count: refused.count,
+            total,
+            first: refused.first,
+            worst,
+            quality,
+            min_quality: rule.min_quality,
+            dimension: rule.dimension,
+        });
+    }
+    if let Some((worst, q)) = slivers.worst {
+        warnings.push(sliver_warning(&slivers, worst, q, rule));
+    }
+    Ok(())
+}
+
+fn sliver_warning(s: &Below, worst: usize, q: f64, rule: &MeasureRule) -> String {
+    let ids: Vec<String> = s.first.iter().map(|v| v.to_string()).collect();
+    let more = if s.count > s.first.len() { ", …" } else { "" };
+    let (what, power) = if rule.dimension == 2 {
+        ("area", "²")
+    } else {
+        ("volume", "³")
+    };
+    format!(
+        "{} sliver element{} (rest {what} ÷ longest edge{power} below {:e}): {}{more}; \
+         the worst is element {worst} ({q:e}); they are kept (set a minimum quality to refuse them)",
+        s.count,
+        if s.count == 1 { "" } else { "s" },
+        rule.sliver_quality,
+        ids.join(", "),
+    )
 }
 
 /// Refuse unreferenced vertices unless `drop` is set.

@@ -7,11 +7,19 @@
 //! 3. indices in range, no vertex repeated inside an element;
 //! 4. no duplicate element (same vertex set);
 //! 5. finite coordinates of referenced vertices; `z = 0` for planar meshes;
-//! 6. rest measures: degenerate if `|m| ≤ tol · L^d` (`L` the bbox
-//!    diagonal of the referenced vertices, `d` = 2 for triangles, 3 for
-//!    tets, `tol` = [`ValidationOptions::rest_measure_tolerance`]);
+//! 6. rest measures, each element against its own longest edge `L`
+//!    (scale-invariant, the same rule as the element library
+//!    `ecc_runtime::Rest`): degenerate if the measure `m` or `L` is not
+//!    finite or `|det Dm| = den·|m| ≤ 1e-12 · L^d` ([`crate::DEGENERATE_REL_TOL`];
+//!    `d` = 2, `den` = 2 for triangles, `d` = 3, `den` = 6 for tets);
 //!    inverted if the signed area (planar meshes) or the signed volume
-//!    (tets) is negative. Surfaces in 3D have no sign, only area.
+//!    (tets) is negative. Surfaces in 3D have no sign, only area. The
+//!    quality `q = |m| / L^d` (√3/4 ≈ 0.43 for an equilateral triangle,
+//!    1/(6√2) ≈ 0.118 for a regular tet) below
+//!    [`ValidationOptions::min_quality`] is refused
+//!    ([`ValidationError::LowQualityElements`], ids named); below
+//!    [`ValidationOptions::sliver_quality`] it is a warning naming the
+//!    elements.
 //!
 //! On request ([`ValidationOptions`]): manifoldness, consistent
 //! orientation, a single connected component. Several components are
@@ -22,15 +30,14 @@
 //! [`ValidationOptions::drop_unreferenced`], dropped (with a warning) and
 //! the indices renumbered; [`Validated::vertex_map`] keeps old → new ids.
 //!
-//! **Why `tol = 1e-12` by default.** Round-off in an area computed from
-//! coordinates of size `L` is about `1e-16 · L²`, so anything below
-//! `1e-12 · L^d` carries no usable rest shape (its inverse rest matrix
-//! would amplify noise by `≥ 1e12`). Real meshes' smallest elements sit
-//! above it: camelhead.off's 4 folded faces around vertex 901 have area
-//! `~4e-8` with `L ≈ 1.25` (`2.6e-8 · L²`): tiny, nearly flat, but
-//! genuine triangles, so they must validate; hand.mesh's smallest sliver
-//! has volume `4.5e-10` with `L ≈ 2.03` (`5.4e-11 · L³`). Raise the
-//! tolerance to reject slivers a solver should not see.
+//! **Why per element, and why `1e-12`.** Round-off in `det Dm` computed
+//! from edges of length `≤ L` is about `1e-16 · L^d`, so below
+//! `1e-12 · L^d` an element carries no usable rest shape (its `Dm⁻¹` would
+//! amplify noise by `≥ 1e12`). Measuring against the element's own edges
+//! (not the whole mesh's bounding box) makes the rule independent of the
+//! rest of the mesh: a disk surface whose smallest triangle has area
+//! `5.3e-12` but quality `9e-6` is a genuine triangle and validates (with
+//! a sliver warning), as the element library and the solvers accept it.
 
 mod common;
 mod manifold;
@@ -56,6 +63,17 @@ fn check_components<const K: usize>(
         warnings.push(format!("the mesh has {count} connected components"));
     }
     Ok(())
+}
+
+/// The rest-measure rule of `opts` for elements of dimension `dimension`.
+fn rule(dimension: usize, signed: bool, opts: &ValidationOptions) -> MeasureRule {
+    MeasureRule {
+        dimension,
+        den: if dimension == 2 { 2.0 } else { 6.0 },
+        signed,
+        min_quality: opts.min_quality,
+        sliver_quality: opts.sliver_quality,
+    }
 }
 
 /// Validate a triangle mesh: planar (`z = 0`, signed areas must be
@@ -99,18 +117,18 @@ pub fn validate_tri(
     {
         return Err(ValidationError::NotPlanar { vertex, z: p[2] });
     }
-    let l = reference_length(&mesh.positions, &used);
-    let tol = opts.rest_measure_tolerance * l * l;
     let pos = &mesh.positions;
     let measures = mesh.triangles.iter().map(|t| {
         let (a, b, c) = (pos[t[0]], pos[t[1]], pos[t[2]]);
-        if planar {
+        let m = if planar {
             signed_area_2d(a, b, c)
         } else {
             triangle_area(a, b, c)
-        }
+        };
+        (m, longest_edge(pos, t))
     });
-    check_measures(measures, tol, planar, 2)?;
+    let mut warnings = Vec::new();
+    check_measures(measures, &rule(2, planar, opts), &mut warnings)?;
     if opts.require_manifold || opts.require_oriented {
         let sides = sorted_sides(&mesh.triangles);
         manifold::check_edges(&sides, opts.require_manifold, opts.require_oriented)?;
@@ -118,7 +136,6 @@ pub fn validate_tri(
     if opts.require_manifold {
         manifold::check_fans(&mesh.triangles, n)?;
     }
-    let mut warnings = Vec::new();
     check_components(&mesh.triangles, opts, &mut warnings)?;
     check_unreferenced(&used, opts.drop_unreferenced)?;
     let (vertex_map, kept, warning) = compaction(&used);
@@ -151,18 +168,16 @@ pub fn validate_tet(
     check_duplicates(&mesh.tets)?;
     let used = referenced(&mesh.tets, n);
     check_finite(&mesh.positions, &used)?;
-    let l = reference_length(&mesh.positions, &used);
-    let tol = opts.rest_measure_tolerance * l * l * l;
     let pos = &mesh.positions;
-    let measures = mesh
-        .tets
-        .iter()
-        .map(|t| tet_signed_volume(pos[t[0]], pos[t[1]], pos[t[2]], pos[t[3]]));
-    check_measures(measures, tol, true, 3)?;
+    let measures = mesh.tets.iter().map(|t| {
+        let m = tet_signed_volume(pos[t[0]], pos[t[1]], pos[t[2]], pos[t[3]]);
+        (m, longest_edge(pos, t))
+    });
+    let mut warnings = Vec::new();
+    check_measures(measures, &rule(3, true, opts), &mut warnings)?;
     if opts.require_manifold {
         manifold::check_tet_faces(&mesh.tets)?;
     }
-    let mut warnings = Vec::new();
     check_components(&mesh.tets, opts, &mut warnings)?;
     check_unreferenced(&used, opts.drop_unreferenced)?;
     let (vertex_map, kept, warning) = compaction(&used);
