@@ -45,6 +45,13 @@
 //! Generated code refers to the runtime through `GenOptions::runtime_path`
 //! (default `::ecc_runtime`), allocates nothing, and is clippy-clean (a few
 //! targeted `#[allow]`s cover long literals and long functions).
+//!
+//! ## C++
+//!
+//! [`generate_cpp`] prints the same plans as a self-contained C++17 header
+//! (`ecc x.psi --emit cpp`; see [`cpp`]): the same expressions, guards and
+//! limits, on a small header-only runtime written once
+//! ([`cpp::CPP_RUNTIME`]: signed SVD, modes, filters, chain rule).
 
 pub mod build;
 pub mod cpp;
