@@ -13,7 +13,8 @@
 //!
 //! Default sizes: 250 500 1000 2000 5000 10000 20000. Each compile is run
 //! `R` times (default 1) and the minimum is printed: the machine is shared,
-//! so the minimum is the least noisy estimate.
+//! so the minimum is the least noisy estimate. `work` is the deterministic
+//! CAS operation count of one compile ([`ecc_dsl::cas::work_count`]).
 
 use std::time::Instant;
 
@@ -47,18 +48,21 @@ fn main() {
         sizes = vec![250, 500, 1000, 2000, 5000, 10000, 20000];
     }
     println!(
-        "{:<6} {:>7} {:>9} {:>10} {:>9}",
-        "family", "n", "bytes", "min s", "nodes"
+        "{:<6} {:>7} {:>9} {:>10} {:>9} {:>12}",
+        "family", "n", "bytes", "min s", "nodes", "work"
     );
     for f in &families {
         for &n in &sizes {
             let src = energy(*f, n);
             let mut best = f64::INFINITY;
             let mut nodes = 0;
+            let mut work = 0;
             for _ in 0..reps.max(1) {
+                let w0 = ecc_dsl::cas::work_count();
                 let t = Instant::now();
                 let m = ecc_dsl::compile(&src, "scaling");
                 best = best.min(t.elapsed().as_secs_f64());
+                work = ecc_dsl::cas::work_count() - w0;
                 match m {
                     Ok(m) => nodes = m.dims.iter().map(|d| d.graph.len()).sum(),
                     Err(d) => {
@@ -68,7 +72,7 @@ fn main() {
                 }
             }
             println!(
-                "{:<6} {n:>7} {:>9} {best:>10.3} {nodes:>9}",
+                "{:<6} {n:>7} {:>9} {best:>10.3} {nodes:>9} {work:>12}",
                 f.name(),
                 src.len()
             );

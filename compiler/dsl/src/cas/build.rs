@@ -99,6 +99,7 @@ impl Graph {
         let mut collected: BTreeMap<Id, BigRational> = BTreeMap::new();
         let mut stack: Vec<Id> = terms.iter().rev().copied().collect();
         while let Some(t) = stack.pop() {
+            super::graph::count_work(1);
             match self.get(t).clone() {
                 Node::Num(c) => constant += c,
                 Node::Add(children) => stack.extend(children.iter().rev()),
@@ -138,6 +139,7 @@ impl Graph {
             let mut bases: BTreeMap<Id, Vec<Id>> = BTreeMap::new();
             let mut stack: Vec<Id> = pending.iter().rev().copied().collect();
             while let Some(f) = stack.pop() {
+                super::graph::count_work(1);
                 match self.get(f).clone() {
                     Node::Num(c) => coef *= c,
                     Node::Mul(children) => stack.extend(children.iter().rev()),

@@ -6,6 +6,25 @@ use num_rational::BigRational;
 
 use super::node::{Id, Node, Sym};
 
+thread_local! {
+    static WORK: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// Elementary CAS operations done on this thread so far: per node looked up
+/// or created, 1 + its number of children (what hashing and comparing it
+/// costs); per node visited by a sweep, 1; per polynomial term copied or
+/// combined, 1 (see `poly`). A deterministic, machine-independent measure of
+/// compile cost: take the difference around a compile. Tests use it to
+/// check that compile cost grows near-linearly with the energy's size.
+pub fn work_count() -> u64 {
+    WORK.with(|w| w.get())
+}
+
+/// Add `ops` to [`work_count`].
+pub(crate) fn count_work(ops: u64) {
+    WORK.with(|w| w.set(w.get().wrapping_add(ops)));
+}
+
 /// A hash-consed expression DAG (egg/naga style arena).
 ///
 /// Nodes are stored children-before-parents: every child id is smaller than
@@ -44,6 +63,7 @@ impl Graph {
     ///
     /// This does not canonicalise: callers use the smart constructors.
     pub fn add(&mut self, node: Node) -> Id {
+        count_work(1 + node.children().len() as u64);
         if let Some(&id) = self.index.get(&node) {
             return id;
         }
@@ -159,6 +179,7 @@ impl Graph {
             out.push(id);
             stack.extend_from_slice(self.get(id).children());
         }
+        count_work(out.len() as u64);
         out.sort_unstable();
         out
     }

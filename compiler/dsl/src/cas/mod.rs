@@ -11,5 +11,6 @@ mod print;
 pub mod rat;
 
 pub use eval::{Env, Tape, eval, eval_many};
-pub use graph::Graph;
+pub(crate) use graph::count_work;
+pub use graph::{Graph, work_count};
 pub use node::{Id, Node, Sym};

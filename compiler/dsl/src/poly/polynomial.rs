@@ -206,6 +206,7 @@ impl Poly {
     /// `self + other`.
     pub fn add(&self, other: &Poly) -> Result<Poly, TooBig> {
         charge(other.terms.len() as u64)?;
+        crate::cas::count_work((self.terms.len() + other.terms.len()) as u64);
         let mut r = self.clone();
         for (m, c) in &other.terms {
             r.add_term(m.clone(), c.clone());
@@ -224,6 +225,7 @@ impl Poly {
     /// After an error `self` is partly updated and must be discarded.
     pub fn add_shifted(&mut self, other: &Poly, shift: &[u32]) -> Result<(), TooBig> {
         charge(other.terms.len() as u64)?;
+        crate::cas::count_work(other.terms.len() as u64);
         for (m, c) in &other.terms {
             let key = if shift.is_empty() {
                 m.clone()
@@ -299,6 +301,7 @@ impl Poly {
         // Big coefficients cost more (products and gcd reductions grow with size).
         let words = 1 + (self.coeff_bits() + other.coeff_bits()) / 64;
         charge((work as u64).saturating_mul(words * words))?;
+        crate::cas::count_work(work as u64);
         let mut r = Poly::zero();
         for (ma, ca) in &self.terms {
             for (mb, cb) in &other.terms {
