@@ -53,9 +53,7 @@ impl Hook {
             };
             let out = cb.call1(py, (record_dict(py, rec)?,))?;
             // returning False asks to stop; None or True continue
-            Ok(!out
-                .bind(py)
-                .is(&pyo3::types::PyBool::new(py, false).to_owned()))
+            Ok(!out.bind(py).is(pyo3::types::PyBool::new(py, false)))
         });
         match res {
             Ok(true) => ControlFlow::Continue(()),
