@@ -18,9 +18,8 @@
 //!   trait over f32, f64 and it, the number types of the independent
 //!   high-precision references (here and in `ecc-benches`).
 
-// One source with the runtime's own tests (see the module docs).
-#[path = "../../runtime/core/tests/common/cases.rs"]
-pub mod cases;
+// The one hard-case table, shared with the runtime's own tests and `ecc check`.
+pub use ecc_runtime::reference::cases;
 pub mod dd;
 pub mod fcheck;
 pub mod library;

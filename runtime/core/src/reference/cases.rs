@@ -1,9 +1,11 @@
-//! Hard cases, rotations and random deformation gradients (seeded).
+//! Hard cases, rotations and random deformation gradients (seeded), behind
+//! the `cases` feature (it adds `rand`; the runtime itself needs nalgebra only).
 //!
-//! One file for two crates: the runtime's own tests (`mod common`) and the
-//! cross-crate tests' library (`ecc_tests::cases`, included by path), so
-//! both check the same hard cases without the runtime depending on the
-//! compiler crates.
+//! One home for the runtime's own tests, the cross-crate tests
+//! (`ecc_tests::cases` re-exports this module) and every other checker:
+//! named signed singular values σ that break naive formulas (repeated and
+//! nearly repeated σ, σi + σj ≈ 0, tiny σ, inversion, huge stretch), turned
+//! into F = U diag(σ) Vᵀ by [`compose`] with seeded rotations.
 
 use nalgebra::{Matrix2, Matrix3, SMatrix, UnitQuaternion};
 use rand::{Rng, SeedableRng};
@@ -42,55 +44,143 @@ const fn c<const D: usize>(
     }
 }
 
-/// The hard cases in 3D.
-pub fn hard_cases_3d() -> Vec<Case<3>> {
-    vec![
-        c("rest", [1.0, 1.0, 1.0], false, true),
-        c("uniform scale up", [1.7, 1.7, 1.7], false, true),
-        c("uniform scale down", [0.45, 0.45, 0.45], false, true),
-        c("repeated pair", [1.6, 0.7, 0.7], false, true),
-        c("repeated top pair", [1.3, 1.3, 0.6], false, true),
-        c(
-            "near-repeated 1e-9",
-            [1.4, 1.4 * (1.0 - 1e-9), 0.8],
-            false,
-            true,
-        ),
-        c(
-            "near-repeated 1e-9 low",
-            [1.4, 0.8, 0.8 * (1.0 - 1e-9)],
-            false,
-            true,
-        ),
-        c(
-            "antipodal 1e-9",
-            [1.2, 0.9, -0.9 * (1.0 - 1e-9)],
-            true,
-            false,
-        ),
-        c("antipodal exact", [1.2, 0.9, -0.9], true, false),
-        c("sigma 1e-6", [1.1, 0.8, 1e-6], false, true),
-        c("inverted", [1.3, 0.9, -0.6], false, false),
-        c("inverted all equal", [0.8, 0.8, -0.8], true, false),
-        c("large stretch", [1e3, 1.2, 0.9], false, true),
-        c("generic", [1.9, 1.1, 0.35], false, true),
-    ]
+/// One named hard case: σ in 3D and/or 2D (`None` where it has no analogue).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Entry {
+    /// Unique name.
+    pub name: &'static str,
+    /// σ in 3D.
+    pub sigma3: Option<[f64; 3]>,
+    /// σ in 2D.
+    pub sigma2: Option<[f64; 2]>,
 }
 
-/// The hard cases in 2D.
+const fn e(name: &'static str, sigma3: Option<[f64; 3]>, sigma2: Option<[f64; 2]>) -> Entry {
+    Entry {
+        name,
+        sigma3,
+        sigma2,
+    }
+}
+
+/// The one table: every hard case any checker visits (the union of what the
+/// runtime's tests, `ecc check` and the benchmarks' accuracy study used).
+/// Checkers pick a named subset ([`TESTS`], [`CHECK`]); σ need not be in
+/// the signed SVD's order (F = U diag(σ) Vᵀ is composed as written).
+pub const TABLE: &[Entry] = &[
+    e("rest", Some([1.0, 1.0, 1.0]), Some([1.0, 1.0])),
+    e("uniform scale up", Some([1.7, 1.7, 1.7]), Some([1.7, 1.7])),
+    e(
+        "uniform scale down",
+        Some([0.45, 0.45, 0.45]),
+        Some([0.45, 0.45]),
+    ),
+    e("repeated pair", Some([1.6, 0.7, 0.7]), None),
+    e("repeated top pair", Some([1.3, 1.3, 0.6]), None),
+    e("repeated top 0.8", Some([1.3, 1.3, 0.8]), Some([1.3, 1.3])),
+    e(
+        "near-repeated 1e-9",
+        Some([1.4, 1.4 * (1.0 - 1e-9), 0.8]),
+        Some([1.4, 1.4 * (1.0 - 1e-9)]),
+    ),
+    e(
+        "near-repeated 1e-9 low",
+        Some([1.4, 0.8, 0.8 * (1.0 - 1e-9)]),
+        None,
+    ),
+    e(
+        "1e-9 apart",
+        Some([1.3, 1.3 + 1e-9, 0.8]),
+        Some([1.3, 1.3 + 1e-9]),
+    ),
+    e(
+        "antipodal 1e-9",
+        Some([1.2, 0.9, -0.9 * (1.0 - 1e-9)]),
+        Some([0.9, -0.9 * (1.0 - 1e-9)]),
+    ),
+    e(
+        "antipodal +1e-9",
+        Some([1.2, 0.7, -0.7 + 1e-9]),
+        Some([0.7, -0.7 + 1e-9]),
+    ),
+    e("antipodal exact", Some([1.2, 0.9, -0.9]), Some([0.9, -0.9])),
+    e("sigma 1e-6", Some([1.1, 0.8, 1e-6]), Some([1.1, 1e-6])),
+    e(
+        "sigma 1e-6 near 1",
+        Some([1.0, 0.9, 1e-6]),
+        Some([1.0, 1e-6]),
+    ),
+    e("inverted", Some([1.3, 0.9, -0.6]), Some([1.3, -0.6])),
+    e("inverted 0.8", Some([1.2, 0.9, -0.8]), Some([1.2, -0.8])),
+    e("inverted all equal", Some([0.8, 0.8, -0.8]), None),
+    e("large stretch", Some([1e3, 1.2, 0.9]), Some([1e3, 0.9])),
+    e("large stretch 2", Some([1e3, 2.0, 0.5]), Some([1e3, 0.5])),
+    e("generic", Some([1.9, 1.1, 0.35]), Some([1.9, 0.35])),
+];
+
+/// The cases the runtime's and the cross-crate tests visit.
+pub const TESTS: &[&str] = &[
+    "rest",
+    "uniform scale up",
+    "uniform scale down",
+    "repeated pair",
+    "repeated top pair",
+    "near-repeated 1e-9",
+    "near-repeated 1e-9 low",
+    "antipodal 1e-9",
+    "antipodal exact",
+    "sigma 1e-6",
+    "inverted",
+    "inverted all equal",
+    "large stretch",
+    "generic",
+];
+
+/// `ecc check`'s rows after "rest" and "rotation": (report label, case).
+pub const CHECK: &[(&str, &str)] = &[
+    ("uniform scale", "uniform scale up"),
+    ("repeated sigma", "repeated top 0.8"),
+    ("sigma 1e-9 apart", "1e-9 apart"),
+    ("sigma_i+sigma_j~0", "antipodal +1e-9"),
+    ("sigma = 1e-6", "sigma 1e-6 near 1"),
+    ("inverted", "inverted 0.8"),
+    ("sigma = 1e3", "large stretch 2"),
+];
+
+/// σ of the case called `name` in dimension `D` (2 or 3), if it has one.
+pub fn sigma<const D: usize>(name: &str) -> Option<[f64; D]> {
+    let entry = TABLE.iter().find(|c| c.name == name)?;
+    let s: &[f64] = match D {
+        2 => entry.sigma2.as_ref()?,
+        3 => entry.sigma3.as_ref()?,
+        _ => return None,
+    };
+    Some(std::array::from_fn(|i| s[i]))
+}
+
+/// The named cases that exist in dimension `D`, with their flags.
+pub fn select<const D: usize>(names: &[&'static str]) -> Vec<Case<D>> {
+    names
+        .iter()
+        .filter_map(|&name| {
+            let sigma = sigma::<D>(name)?;
+            let smax = sigma.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let antipodal =
+                (0..D).any(|i| (i + 1..D).any(|j| (sigma[i] + sigma[j]).abs() <= 1e-6 * smax));
+            let positive = sigma.iter().all(|&x| x > 0.0);
+            Some(c(name, sigma, antipodal, positive))
+        })
+        .collect()
+}
+
+/// The hard cases in 3D ([`TESTS`]).
+pub fn hard_cases_3d() -> Vec<Case<3>> {
+    select(TESTS)
+}
+
+/// The hard cases in 2D ([`TESTS`] that exist in 2D).
 pub fn hard_cases_2d() -> Vec<Case<2>> {
-    vec![
-        c("rest", [1.0, 1.0], false, true),
-        c("uniform scale up", [1.7, 1.7], false, true),
-        c("uniform scale down", [0.45, 0.45], false, true),
-        c("near-repeated 1e-9", [1.4, 1.4 * (1.0 - 1e-9)], false, true),
-        c("antipodal 1e-9", [0.9, -0.9 * (1.0 - 1e-9)], true, false),
-        c("antipodal exact", [0.9, -0.9], true, false),
-        c("sigma 1e-6", [1.1, 1e-6], false, true),
-        c("inverted", [1.3, -0.6], false, false),
-        c("large stretch", [1e3, 0.9], false, true),
-        c("generic", [1.9, 0.35], false, true),
-    ]
+    select(TESTS)
 }
 
 /// A uniformly random rotation in SO(3).
@@ -113,6 +203,17 @@ pub fn rot3(r: &mut ChaCha8Rng) -> Matrix3<f64> {
 pub fn rot2(r: &mut ChaCha8Rng) -> Matrix2<f64> {
     let a: f64 = r.gen_range(-std::f64::consts::PI..std::f64::consts::PI);
     Matrix2::new(a.cos(), -a.sin(), a.sin(), a.cos())
+}
+
+/// A uniformly random rotation in SO(D) for D = 2 ([`rot2`]) or 3 ([`rot3`]).
+pub fn rotation<const D: usize>(r: &mut ChaCha8Rng) -> SMatrix<f64, D, D> {
+    if D == 2 {
+        let m = rot2(r);
+        SMatrix::from_fn(|i, j| m[(i, j)])
+    } else {
+        let m = rot3(r);
+        SMatrix::from_fn(|i, j| m[(i, j)])
+    }
 }
 
 /// F = U diag(σ) Vᵀ.

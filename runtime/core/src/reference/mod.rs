@@ -5,6 +5,8 @@
 //! nalgebra's `SymmetricEigen`, and the finite differences only ever evaluate
 //! Ψ(F) through [`psi_f`].
 
+#[cfg(feature = "cases")]
+pub mod cases;
 mod fd;
 
 pub use fd::{fd_gradient, fd_gradient_f, fd_gradient_vec, fd_hessian, fd_hessian_f};

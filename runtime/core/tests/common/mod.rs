@@ -1,10 +1,9 @@
 //! Shared test helpers: seeded randomness, hard cases, test-only energies.
 #![allow(dead_code)]
 
-mod cases;
 pub mod energies;
 
-pub use cases::*;
+pub use ecc_runtime::reference::cases::*;
 
 use nalgebra::{DMatrix, SMatrix, Vector3};
 
