@@ -62,13 +62,13 @@ pub enum SceneError {
         /// Why.
         message: String,
     },
-    /// The solver could not be set up (a bug or an unusable mesh: the
-    /// message comes from ecc-fem).
+    /// The solver could not be set up (a bug or an unusable mesh; the
+    /// library's error is kept as the source).
     Setup {
         /// What was being built.
         what: String,
-        /// The solver's message.
-        message: String,
+        /// The library's error.
+        source: ecc_fem::FemError,
     },
 }
 
@@ -85,10 +85,10 @@ impl SceneError {
     }
 
     /// Shorthand for a [`SceneError::Setup`].
-    pub fn setup(what: impl Into<String>, e: impl fmt::Display) -> Self {
+    pub fn setup(what: impl Into<String>, source: ecc_fem::FemError) -> Self {
         SceneError::Setup {
             what: what.into(),
-            message: e.to_string(),
+            source,
         }
     }
 
@@ -139,9 +139,16 @@ impl fmt::Display for SceneError {
                 write!(f, "output folder `{path}` cannot be written: {message}")
             }
             SceneError::Write { path, message } => write!(f, "cannot write `{path}`: {message}"),
-            SceneError::Setup { what, message } => write!(f, "setting up {what}: {message}"),
+            SceneError::Setup { what, source } => write!(f, "setting up {what}: {source}"),
         }
     }
 }
 
-impl std::error::Error for SceneError {}
+impl std::error::Error for SceneError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            SceneError::Setup { source, .. } => Some(source),
+            _ => None,
+        }
+    }
+}
