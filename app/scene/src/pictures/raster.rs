@@ -129,8 +129,9 @@ pub struct Layer {
     /// Size in samples.
     w: usize,
     h: usize,
-    /// Premultiplied colour and opacity of each sample.
-    px: Vec<[f32; 4]>,
+    /// Premultiplied colour and opacity of each sample, 8 bits each (a
+    /// 2048² picture has 38 M samples).
+    px: Vec<[u8; 4]>,
     z: Vec<f32>,
 }
 
@@ -143,7 +144,7 @@ impl Layer {
             origin,
             w,
             h,
-            px: vec![[0.0; 4]; w * h],
+            px: vec![[0; 4]; w * h],
             z: vec![f32::INFINITY; w * h],
         }
     }
@@ -165,7 +166,7 @@ impl Layer {
         for (p, m) in self.px.iter_mut().zip(covered) {
             if *m {
                 for c in &mut p[..3] {
-                    *c *= f;
+                    *c = (*c as f32 * f).round() as u8;
                 }
             }
         }
@@ -180,7 +181,7 @@ impl Layer {
     pub fn composite(&self, pic: &mut Picture) {
         let (w, h) = (self.w / SS, self.h / SS);
         let (pw, ph) = (pic.width() as i64, pic.height() as i64);
-        let inv = 1.0 / (SS * SS) as f32;
+        let inv = 1.0 / (SS * SS * 255) as f32;
         let px = pic.pixmap_mut().pixels_mut();
         for y in 0..h {
             for x in 0..w {
@@ -188,15 +189,16 @@ impl Layer {
                 if tx < 0 || ty < 0 || tx >= pw || ty >= ph {
                     continue;
                 }
-                let mut acc = [0.0f32; 4];
+                let mut sum = [0u32; 4];
                 for dy in 0..SS {
                     let row = (y * SS + dy) * self.w + x * SS;
                     for p in &self.px[row..row + SS] {
                         for c in 0..4 {
-                            acc[c] += p[c];
+                            sum[c] += p[c] as u32;
                         }
                     }
                 }
+                let acc = sum.map(|v| v as f32);
                 let a = acc[3] * inv;
                 if a <= 0.0 {
                     continue;
@@ -296,8 +298,9 @@ pub fn triangle(
     });
     for (k, z, c, a) in hits {
         layer.z[k] = z as f32;
-        let c = c.map(|v| v.clamp(0.0, 1.0) * a);
-        layer.px[k] = [c[0], c[1], c[2], a];
+        let a = a.clamp(0.0, 1.0);
+        let q = |v: f32| (v.clamp(0.0, 1.0) * a * 255.0).round() as u8;
+        layer.px[k] = [q(c[0]), q(c[1]), q(c[2]), (a * 255.0).round() as u8];
     }
 }
 
