@@ -48,10 +48,13 @@ namespace ecc {
 constexpr double LIMIT_TOL = 6.055454452393343e-6;
 
 constexpr double FRAC_1_SQRT_2 = 0.70710678118654752440;
-constexpr double EPS = std::numeric_limits<double>::epsilon();
+/// f64::EPSILON (a literal, so device code needs no host constexpr call).
+constexpr double EPS = 2.220446049250313e-16;
+static_assert(EPS == std::numeric_limits<double>::epsilon(), "IEEE double expected");
 
-ECC_HOST_DEVICE inline double infinity() { return std::numeric_limits<double>::infinity(); }
-ECC_HOST_DEVICE inline double nan() { return std::numeric_limits<double>::quiet_NaN(); }
+/// +∞ and NaN through the <cmath> macros (usable in host and device code).
+ECC_HOST_DEVICE inline double infinity() { return HUGE_VAL; }
+ECC_HOST_DEVICE inline double nan() { return NAN; }
 /// Rust's f64::max / f64::min: a NaN operand is ignored.
 ECC_HOST_DEVICE inline double fmax(double a, double b) { return std::fmax(a, b); }
 /// Ψ as energies report it: a non-finite value (outside the domain) is +∞.

@@ -26,13 +26,14 @@ pub(crate) fn cpp(e: &Ex) -> String {
 }
 
 /// A `double` literal: shortest round-trip digits, always with a `.` or an
-/// exponent; non-finite values through `std::numeric_limits`.
+/// exponent; non-finite values through the runtime's `ecc::infinity()` and
+/// `ecc::nan()` (usable in device code).
 pub(crate) fn lit(v: f64) -> String {
     if v.is_nan() {
-        return "std::numeric_limits<double>::quiet_NaN()".into();
+        return "::ecc::nan()".into();
     }
     if v.is_infinite() {
-        let inf = "std::numeric_limits<double>::infinity()";
+        let inf = "::ecc::infinity()";
         return if v > 0.0 {
             inf.into()
         } else {
@@ -237,9 +238,6 @@ mod tests {
         assert_eq!(lit(1e-30), "1e-30");
         assert_eq!(lit(1.0), "1.0");
         assert_eq!(lit(-0.25), "-0.25");
-        assert_eq!(
-            lit(f64::INFINITY),
-            "std::numeric_limits<double>::infinity()"
-        );
+        assert_eq!(lit(f64::INFINITY), "::ecc::infinity()");
     }
 }
