@@ -45,5 +45,6 @@ pub fn run(args: &DemoArgs) -> Result<(), CliError> {
         stats: args.stats,
         json: false,
         no_pictures: false,
+        allow_unconverged: false,
     })
 }

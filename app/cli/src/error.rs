@@ -9,6 +9,19 @@ use crate::input::{MatrixError, ParamArgError};
 
 /// Exit status for failures (bad input, failed checks); clap uses 2 for usage errors.
 pub const EXIT_FAILURE: i32 = 1;
+/// Exit status of an `ecc sim` run whose frames did not all converge
+/// (without `--allow-unconverged`).
+pub const EXIT_UNCONVERGED: i32 = 3;
+
+impl CliError {
+    /// The process exit status for this error.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            CliError::Unconverged { .. } => EXIT_UNCONVERGED,
+            _ => EXIT_FAILURE,
+        }
+    }
+}
 
 /// Anything that makes a command fail.
 #[derive(Debug, thiserror::Error)]
@@ -62,6 +75,19 @@ pub enum CliError {
     Stopped {
         /// The reason and the frame, as recorded in the summary.
         why: String,
+    },
+    /// A scene run reached its last frame but some frames did not converge
+    /// (exit status [`EXIT_UNCONVERGED`]; every file was written).
+    #[error(
+        "error: {frames} of {total} frame(s) did not converge (see the warning above): raise \
+         `[solver] max_iters` (or loosen `[solver] tol`) in the scene, or pass \
+         --allow-unconverged to accept the result; all files were written"
+    )]
+    Unconverged {
+        /// Frames that did not converge.
+        frames: usize,
+        /// Frames run.
+        total: usize,
     },
     /// `ecc check` found errors above tolerance (the report is already printed).
     #[error(

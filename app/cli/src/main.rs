@@ -19,7 +19,7 @@ mod source;
 use clap::Parser;
 
 use cli::{Cli, Command};
-use error::{CliError, EXIT_FAILURE};
+use error::CliError;
 
 fn run(cli: &Cli) -> Result<(), CliError> {
     match &cli.command {
@@ -47,7 +47,7 @@ fn main() {
         Ok(Ok(())) => 0,
         Ok(Err(e)) => {
             eprintln!("{e}");
-            EXIT_FAILURE
+            e.exit_code()
         }
         Err(_) => 101,
     };

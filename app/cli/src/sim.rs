@@ -14,7 +14,9 @@ use clap::Args;
 use ecc_interp::{LoadError, load_psi};
 use ecc_runtime::Energy;
 use ecc_scene::energy::apply_params;
-use ecc_scene::{EnergyError, EnergyRequest, EnergySource, RunOptions, SceneFile, run_scene};
+use ecc_scene::{
+    EnergyError, EnergyRequest, EnergySource, RunOptions, RunStatus, SceneFile, run_scene,
+};
 
 use crate::error::CliError;
 use crate::output::print_stdout;
@@ -43,6 +45,10 @@ pub struct SimArgs {
     /// Do not draw result.png and convergence.png.
     #[arg(long)]
     pub no_pictures: bool,
+    /// Exit 0 even when some frames did not converge (by default such a
+    /// run writes all its files and exits 3).
+    #[arg(long)]
+    pub allow_unconverged: bool,
 }
 
 /// Energies for scenes: the generated library and the `.psi` interpreter.
@@ -147,6 +153,12 @@ pub fn run_file(mut file: SceneFile, args: &SimArgs) -> Result<(), CliError> {
     }
     if let Some(why) = &s.stopped {
         return Err(CliError::Stopped { why: why.clone() });
+    }
+    if s.status == RunStatus::Unconverged && !args.allow_unconverged {
+        return Err(CliError::Unconverged {
+            frames: s.frames.len().saturating_sub(1) - s.converged_frames,
+            total: s.frames.len().saturating_sub(1),
+        });
     }
     Ok(())
 }

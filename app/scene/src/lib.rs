@@ -114,4 +114,4 @@ pub use energy::{EnergyError, EnergyRequest, EnergySource, RuntimeEnergies};
 pub use error::{Location, SceneError};
 pub use sim::{FinalState, FrameLines, Observer, RunOptions, RunReport, Silent, run_scene};
 pub use spec::{Scene, SceneFile};
-pub use summary::Summary;
+pub use summary::{RunStatus, Summary};

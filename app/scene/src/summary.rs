@@ -185,6 +185,10 @@ pub struct Summary {
     pub converged_frames: usize,
     /// Why the run stopped early, if it did.
     pub stopped: Option<String>,
+    /// How the run ended: `converged` (every frame), `unconverged` (it
+    /// reached the last frame, but some solve stopped at `max_iters` or
+    /// another limit) or `stopped` (see `stopped`).
+    pub status: RunStatus,
     /// Scaled objective at the end.
     #[serde(with = "finite_or_null")]
     pub final_energy: f64,
@@ -200,6 +204,31 @@ pub struct Summary {
     pub outputs: Vec<String>,
     /// Warnings (mesh validation notes, non-converged frames).
     pub warnings: Vec<String>,
+}
+
+/// How a scene run ended (`status` in `summary.json`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunStatus {
+    /// Every frame's solves converged.
+    Converged,
+    /// The run reached its last frame but some frames did not converge.
+    Unconverged,
+    /// The run stopped before its last frame.
+    Stopped,
+}
+
+impl RunStatus {
+    /// The status of a run with `converged` of `frames` frames converged.
+    pub fn of(stopped: bool, converged: usize, frames: usize) -> Self {
+        if stopped {
+            RunStatus::Stopped
+        } else if converged < frames {
+            RunStatus::Unconverged
+        } else {
+            RunStatus::Converged
+        }
+    }
 }
 
 impl Summary {

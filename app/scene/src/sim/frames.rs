@@ -16,7 +16,7 @@ use crate::counters::Counters;
 use crate::error::SceneError;
 use crate::output::OutputDir;
 use crate::pictures;
-use crate::summary::{EnergyStats, FrameStats, HandleStats, Summary};
+use crate::summary::{EnergyStats, FrameStats, HandleStats, RunStatus, Summary};
 
 /// Which frames to keep for the picture: up to `keep`, evenly spread, always the last.
 fn keep_for_picture(frame: usize, frames: usize, keep: usize) -> bool {
@@ -191,6 +191,11 @@ fn summarize<const D: usize>(
             .collect(),
         newton_iterations: stats.iter().map(|s| s.iterations).sum(),
         converged_frames: stats.iter().skip(1).filter(|s| s.converged).count(),
+        status: RunStatus::of(
+            engine.stopped.is_some(),
+            stats.iter().skip(1).filter(|s| s.converged).count(),
+            stats.len().saturating_sub(1),
+        ),
         warnings: warnings(ctx, &stats),
         frames: stats,
         solves: engine.log.clone(),

@@ -25,7 +25,7 @@ use crate::error::SceneError;
 use crate::output::OutputDir;
 use crate::pictures;
 use crate::spec::{FrameFormat, TutteKind};
-use crate::summary::{FrameStats, SolveLog, SolvePoint, Summary};
+use crate::summary::{FrameStats, RunStatus, SolveLog, SolvePoint, Summary};
 
 fn write_uv_frame(
     out: &mut OutputDir,
@@ -234,6 +234,7 @@ pub(crate) fn run_parameterization(
         frames: vec![f0, f1],
         solves: vec![log],
         stopped: None,
+        status: RunStatus::of(false, usize::from(r.converged()), 1),
         final_energy: r.energy,
         setup_seconds,
         newton: r.times,

@@ -371,7 +371,8 @@ pub struct SolverSpec {
     /// Also stop when ‖∇E‖∞ ≤ tol_rel·‖∇E₀‖∞ (default 0: off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tol_rel: Option<f64>,
-    /// Newton iteration cap per solve (default 200).
+    /// Newton iteration cap per solve (default 500: see
+    /// `sim::build::DEFAULT_MAX_ITERS`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub max_iters: Option<usize>,
     /// `clamp` (default), `abs` or `adaptive`.
