@@ -12,6 +12,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use ecc_dsl::Path as IrPath;
+use nalgebra::SMatrix;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
@@ -115,14 +116,22 @@ where
     Space<D>: Dim<D>,
 {
     let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
-    let sign_symmetric = loaded
-        .module
-        .dim(D as u8)
-        .is_some_and(|ir| ir.sign_symmetric);
+    let mut twists = [compare::Twist::Smooth; 3];
+    if let Some(ir) = loaded.module.dim(D as u8) {
+        for (k, kind) in ir.spectral.twist_kind.iter().enumerate().take(3) {
+            twists[k] = match kind {
+                ecc_dsl::PairKind::Pole => compare::Twist::Pole,
+                ecc_dsl::PairKind::Removable if !ir.sign_symmetric => compare::Twist::Kinked,
+                _ => compare::Twist::Smooth,
+            };
+        }
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(args.seed ^ D as u64);
     let mut rows: Vec<Row> = Vec::new();
-    for case in cases::cases::<D>(&mut rng, args.samples) {
-        let errors = compare::compare::<D>(&energy, &case.f, sign_symmetric);
+    let mut all = cases::cases::<D>(&mut rng, args.samples);
+    all.extend(plane_cases::<D>(&mut rng));
+    for case in all {
+        let errors = compare::compare::<D>(&energy, &case.f, twists);
         match rows.iter_mut().find(|r| r.name == case.name) {
             Some(r) => r.add(&errors),
             None => {
@@ -141,6 +150,61 @@ where
     };
     let points: usize = rows.iter().map(|r| r.points).sum();
     Ok(render(loaded, D, path, points, &rows))
+}
+
+/// Row names of [`plane_cases`] by offset: exactly on the plane, then 1e-3…1e-12 off it.
+const TWIST_ROWS: [&str; 5] = [
+    "si = -sj",
+    "si = -sj + 1e-3",
+    "si = -sj + 1e-6",
+    "si = -sj + 1e-9",
+    "si = -sj + 1e-12",
+];
+const FLIP_ROWS: [&str; 5] = [
+    "si = sj",
+    "si = sj + 1e-3",
+    "si = sj + 1e-6",
+    "si = sj + 1e-9",
+    "si = sj + 1e-12",
+];
+
+/// Points on and near the singular sets of every pair's divided
+/// differences, F = U diag(σ) Vᵀ with random rotations: σi = −σj (twist) and
+/// σi = σj (flip) exactly and 1e-3, 1e-6, 1e-9, 1e-12 (relative) away. In the
+/// signed SVD only pairs with the last (possibly negative) σ can meet
+/// σi = −σj, so 3D visits (1.2, a, −a) (slot 0) and (a, a, −a) (slots 0 and 1);
+/// flips visit (c, a, a) with c below and above a, and (a, a, a); the last σ
+/// is the one moved off the plane.
+fn plane_cases<const D: usize>(rng: &mut ChaCha8Rng) -> Vec<cases::Case<D>> {
+    let a = 0.7;
+    let twists: Vec<Vec<f64>> = if D == 2 {
+        vec![vec![a, -a]]
+    } else {
+        vec![vec![1.2, a, -a], vec![a, a, -a]]
+    };
+    let flips: Vec<Vec<f64>> = if D == 2 {
+        vec![vec![a, a]]
+    } else {
+        vec![vec![0.4, a, a], vec![1.2, a, a], vec![a, a, a]]
+    };
+    let offsets = [0.0, 1e-3, 1e-6, 1e-9, 1e-12];
+    let mut out = Vec::new();
+    for (sets, names) in [(twists, TWIST_ROWS), (flips, FLIP_ROWS)] {
+        for s in sets {
+            for (delta, name) in offsets.iter().zip(names) {
+                let mut sigma = s.clone();
+                sigma[D - 1] += delta * a;
+                let u = cases::random_rotation::<D>(rng);
+                let v = cases::random_rotation::<D>(rng);
+                let d = SMatrix::<f64, D, D>::from_fn(|i, j| if i == j { sigma[i] } else { 0.0 });
+                out.push(cases::Case {
+                    name,
+                    f: u * d * v.transpose(),
+                });
+            }
+        }
+    }
+    out
 }
 
 fn cell(x: Option<f64>, tol: f64) -> String {
