@@ -1,7 +1,8 @@
 //! The C++ snippet of README.md ("C++ (and GPU-style code)"), compiled with
 //! the strict flags and run: the three lines work as written, the projected
-//! Hessians are symmetric with non-negative diagonals, and the snippet in the
-//! README is still the one checked here.
+//! Hessians are symmetric with non-negative diagonals, the snippet in the
+//! README is still the one checked here, and the header also compiles with
+//! `ECC_HOST_DEVICE` defined to an attribute (where `__host__ __device__` goes).
 
 mod cpp_common;
 
@@ -49,6 +50,9 @@ int main() {{
     );
     let path = dir.path().join("readme.cpp");
     std::fs::write(&path, main).expect("write");
+    // The device hook sits where a `__host__ __device__` would: every
+    // function of the header and runtime still compiles with an attribute there.
+    cpp_common::compile("g++", &path, &["-DECC_HOST_DEVICE=__attribute__((cold))"]);
     let exe = cpp_common::compile("g++", &path, &[]);
     let out = std::process::Command::new(exe).output().expect("runs");
     assert!(
