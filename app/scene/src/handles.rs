@@ -199,38 +199,15 @@ fn key_from_spec<const D: usize>(path: &str, k: &KeySpec) -> Result<Key<D>, Scen
     })
 }
 
-/// Select and build handle `index` of the scene.
-///
-/// `vertex_map` maps the mesh file's vertex ids to the body's (unreferenced
-/// vertices are dropped when a mesh is read); `taken[v]` names the handle
-/// that already holds vertex v.
-pub fn build_handle<const D: usize>(
-    index: usize,
+/// The vertices `spec` selects (`ids` through `vertex_map`, a `box` or a
+/// half-space `plane`), unsorted.
+fn select<const D: usize>(
+    path: &str,
     spec: &HandleSpec,
     rest: &[[f64; D]],
     vertex_map: &[Option<usize>],
-    taken: &mut [Option<usize>],
-) -> Result<Handle<D>, SceneError> {
-    let path = format!("effects.handles[{index}]");
-    let name = spec
-        .name
-        .clone()
-        .unwrap_or_else(|| format!("handle{index}"));
-    let chosen = [
-        spec.ids.is_some(),
-        spec.bbox.is_some(),
-        spec.plane.is_some(),
-    ]
-    .iter()
-    .filter(|b| **b)
-    .count();
-    if chosen != 1 {
-        return Err(SceneError::invalid(
-            path,
-            "give exactly one of `ids`, `box` or `plane` to select vertices",
-        ));
-    }
-    let mut vertices: Vec<usize> = if let Some(ids) = &spec.ids {
+) -> Result<Vec<usize>, SceneError> {
+    let vertices: Vec<usize> = if let Some(ids) = &spec.ids {
         let mut out = Vec::with_capacity(ids.len());
         for &id in ids {
             match vertex_map.get(id) {
@@ -284,6 +261,41 @@ pub fn build_handle<const D: usize>(
             })
             .collect()
     };
+    Ok(vertices)
+}
+
+/// Select and build handle `index` of the scene.
+///
+/// `vertex_map` maps the mesh file's vertex ids to the body's (unreferenced
+/// vertices are dropped when a mesh is read); `taken[v]` names the handle
+/// that already holds vertex v.
+pub fn build_handle<const D: usize>(
+    index: usize,
+    spec: &HandleSpec,
+    rest: &[[f64; D]],
+    vertex_map: &[Option<usize>],
+    taken: &mut [Option<usize>],
+) -> Result<Handle<D>, SceneError> {
+    let path = format!("effects.handles[{index}]");
+    let name = spec
+        .name
+        .clone()
+        .unwrap_or_else(|| format!("handle{index}"));
+    let chosen = [
+        spec.ids.is_some(),
+        spec.bbox.is_some(),
+        spec.plane.is_some(),
+    ]
+    .iter()
+    .filter(|b| **b)
+    .count();
+    if chosen != 1 {
+        return Err(SceneError::invalid(
+            path,
+            "give exactly one of `ids`, `box` or `plane` to select vertices",
+        ));
+    }
+    let mut vertices = select::<D>(&path, spec, rest, vertex_map)?;
     vertices.sort_unstable();
     vertices.dedup();
     if vertices.is_empty() {

@@ -166,6 +166,28 @@ fn check_mesh(m: &MeshSpec) -> R {
         }
     }
     // sizes are checked before anything is generated
+    check_generated_size(m, want)?;
+    if let Some(s) = &m.size {
+        if s.len() != want {
+            return Err(bad(
+                "mesh.size",
+                format!("expected {want} entries, got {}", s.len()),
+            ));
+        }
+        if s.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
+            return Err(bad(
+                "mesh.size",
+                "every entry must be a positive finite number",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The number of elements a generated shape would have, refused when too
+/// large (before anything is generated).
+fn check_generated_size(m: &MeshSpec, want: usize) -> R {
+    let shape = m.generate;
     let n = |v: usize| v as u128;
     match shape {
         Some(Shape::Bar) => {
@@ -191,20 +213,6 @@ fn check_mesh(m: &MeshSpec) -> R {
             generated_size("mesh.cells", cells.saturating_mul(per), what)?;
         }
         _ => {}
-    }
-    if let Some(s) = &m.size {
-        if s.len() != want {
-            return Err(bad(
-                "mesh.size",
-                format!("expected {want} entries, got {}", s.len()),
-            ));
-        }
-        if s.iter().any(|x| !(x.is_finite() && *x > 0.0)) {
-            return Err(bad(
-                "mesh.size",
-                "every entry must be a positive finite number",
-            ));
-        }
     }
     Ok(())
 }
@@ -277,44 +285,7 @@ fn check_effects(fx: &Effects) -> R {
         }
     }
     if let Some(i) = &fx.interpolate {
-        let deform = i.twist.is_some() || i.bend.is_some();
-        match (&i.target, deform) {
-            (Some(_), true) => {
-                return Err(bad(
-                    "effects.interpolate",
-                    "give either a `target` mesh or a `twist`/`bend` deformation, not both",
-                ));
-            }
-            (None, false) => {
-                return Err(bad(
-                    "effects.interpolate",
-                    "give the second rest shape: a `target` mesh, or `twist` and/or `bend` (degrees)",
-                ));
-            }
-            _ => {}
-        }
-        for (key, v) in [("twist", i.twist), ("bend", i.bend)] {
-            if let Some(v) = v
-                && !v.is_finite()
-            {
-                return Err(bad(&format!("effects.interpolate.{key}"), "must be finite"));
-            }
-        }
-        if let Some(a) = &i.axis
-            && !matches!(a.as_str(), "x" | "y" | "z")
-        {
-            return Err(bad(
-                "effects.interpolate.axis",
-                format!("must be \"x\", \"y\" or \"z\", got \"{a}\""),
-            ));
-        }
-        count("effects.interpolate.steps", i.steps)?;
-        if fx.handles.iter().any(|h| !h.keys.is_empty()) {
-            return Err(bad(
-                "effects.handles",
-                "keyframed handles cannot be combined with interpolation (pinned handles can)",
-            ));
-        }
+        check_interpolate(i, fx)?;
     }
     if fx.parameterize.is_some() {
         let others = [
@@ -331,6 +302,50 @@ fn check_effects(fx: &Effects) -> R {
                 "a parameterisation takes no other effect",
             ));
         }
+    }
+    Ok(())
+}
+
+/// `[effects.interpolate]`: exactly one second rest shape, finite angles,
+/// an axis, and no keyframed handles.
+fn check_interpolate(i: &InterpolateSpec, fx: &Effects) -> R {
+    let deform = i.twist.is_some() || i.bend.is_some();
+    match (&i.target, deform) {
+        (Some(_), true) => {
+            return Err(bad(
+                "effects.interpolate",
+                "give either a `target` mesh or a `twist`/`bend` deformation, not both",
+            ));
+        }
+        (None, false) => {
+            return Err(bad(
+                "effects.interpolate",
+                "give the second rest shape: a `target` mesh, or `twist` and/or `bend` (degrees)",
+            ));
+        }
+        _ => {}
+    }
+    for (key, v) in [("twist", i.twist), ("bend", i.bend)] {
+        if let Some(v) = v
+            && !v.is_finite()
+        {
+            return Err(bad(&format!("effects.interpolate.{key}"), "must be finite"));
+        }
+    }
+    if let Some(a) = &i.axis
+        && !matches!(a.as_str(), "x" | "y" | "z")
+    {
+        return Err(bad(
+            "effects.interpolate.axis",
+            format!("must be \"x\", \"y\" or \"z\", got \"{a}\""),
+        ));
+    }
+    count("effects.interpolate.steps", i.steps)?;
+    if fx.handles.iter().any(|h| !h.keys.is_empty()) {
+        return Err(bad(
+            "effects.handles",
+            "keyframed handles cannot be combined with interpolation (pinned handles can)",
+        ));
     }
     Ok(())
 }
