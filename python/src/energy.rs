@@ -15,6 +15,15 @@ use crate::errors::{energy_error, energy_plain};
 use crate::point::{PointOut, evaluate};
 
 /// An energy density Ψ(F), isotropic, in 2D and/or 3D.
+///
+/// `Energy(text, *, name="energy", **params)` compiles `.psi` text, e.g.
+/// `Energy("I2 - 2*I1 + d")`; `Energy.from_file(path, **params)` a file;
+/// `Energy.builtin(name, **params)` a standard energy (`ecc.builtin_names()`),
+/// e.g. `Energy.builtin("snh", mu=1, lambda_=10)` (`lambda_` is `lambda`).
+/// `eval(F)` returns Ψ, ∂Ψ/∂F, the raw and projected Hessians and the
+/// eigenvalues as numpy arrays; `report()` the Markdown analysis,
+/// `emit_rust()` the generated Rust. Bad text raises `EnergyError` with
+/// `line`, `column` and `diagnostic`.
 #[pyclass(name = "Energy", module = "ecc", frozen)]
 pub struct PyEnergy {
     name: String,
