@@ -14,90 +14,66 @@
 //! | inverted | (1.2, 0.9, −0.8) | (1.2, −0.8) | det F < 0 |
 //! | σ = 1e3 | (10³, 2, 0.5) | (10³, 0.5) | large stretch, scale |
 //!
-//! Barrier energies skip the classes with det F ≤ 0 (Ψ = +∞ there).
+//! Barrier energies skip the classes with det F ≤ 0 (Ψ = +∞ there). The σ
+//! come from the one hard-case table (`ecc_runtime::reference::cases`); the
+//! rotations are drawn here as before (axis–angle), so the recorded report's
+//! samples are reproduced exactly.
 
+use ecc_runtime::reference::cases as table;
 use nalgebra::{Matrix2, Matrix3, Rotation2, Rotation3, Unit, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-/// A hard-case class.
+/// A hard-case class: "random", or a named case of the one table
+/// (`ecc_runtime::reference::cases::BENCH`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CaseClass {
+    /// The report's class name.
     pub name: &'static str,
-    /// σ in 3D (empty for random).
-    pub sigma3: [f64; 3],
-    /// σ in 2D.
-    pub sigma2: [f64; 2],
+    /// The table's case ("" for random).
+    pub case: &'static str,
     /// det F ≤ 0 somewhere in the class (skipped for barrier energies).
     pub inverted: bool,
     pub random: bool,
 }
 
-/// All classes, random first.
+impl CaseClass {
+    /// σ in 3D (zeros for random).
+    pub fn sigma3(&self) -> [f64; 3] {
+        table::sigma::<3>(self.case).unwrap_or([0.0; 3])
+    }
+
+    /// σ in 2D (zeros for random).
+    pub fn sigma2(&self) -> [f64; 2] {
+        table::sigma::<2>(self.case).unwrap_or([0.0; 2])
+    }
+}
+
+const fn class(name: &'static str, case: &'static str, inverted: bool) -> CaseClass {
+    CaseClass {
+        name,
+        case,
+        inverted,
+        random: false,
+    }
+}
+
+/// All classes, random first (the named ones as in `table::BENCH`).
 pub const CLASSES: &[CaseClass] = &[
     CaseClass {
         name: "random",
-        sigma3: [0.0; 3],
-        sigma2: [0.0; 2],
+        case: "",
         inverted: true,
         random: true,
     },
-    CaseClass {
-        name: "rest",
-        sigma3: [1.0, 1.0, 1.0],
-        sigma2: [1.0, 1.0],
-        inverted: false,
-        random: false,
-    },
-    CaseClass {
-        name: "uniform scale",
-        sigma3: [1.3, 1.3, 1.3],
-        sigma2: [1.3, 1.3],
-        inverted: false,
-        random: false,
-    },
-    CaseClass {
-        name: "repeated σ",
-        sigma3: [1.5, 0.8, 0.8],
-        sigma2: [0.8, 0.8],
-        inverted: false,
-        random: false,
-    },
-    CaseClass {
-        name: "σ gap 1e-9",
-        sigma3: [1.1 + 1e-9, 1.1, 0.8],
-        sigma2: [1.1 + 1e-9, 1.1],
-        inverted: false,
-        random: false,
-    },
-    CaseClass {
-        name: "σi+σj≈0",
-        sigma3: [1.2, 0.7, -0.7 + 1e-7],
-        sigma2: [0.7, -0.7 + 1e-7],
-        inverted: true,
-        random: false,
-    },
-    CaseClass {
-        name: "σ=1e-6",
-        sigma3: [1.0, 1.0, 1e-6],
-        sigma2: [1.0, 1e-6],
-        inverted: false,
-        random: false,
-    },
-    CaseClass {
-        name: "inverted",
-        sigma3: [1.2, 0.9, -0.8],
-        sigma2: [1.2, -0.8],
-        inverted: true,
-        random: false,
-    },
-    CaseClass {
-        name: "σ=1e3",
-        sigma3: [1e3, 2.0, 0.5],
-        sigma2: [1e3, 0.5],
-        inverted: false,
-        random: false,
-    },
+    class("rest", "rest", false),
+    class("uniform scale", "uniform scale 1.3", false),
+    class("repeated σ", "repeated low 0.8", false),
+    class("σ gap 1e-9", "1e-9 gap at 1.1", false),
+    class("σi+σj≈0", "antipodal +1e-7", true),
+    class("σ=1e-6", "sigma 1e-6 at 1", false),
+    class("inverted", "inverted 0.8", true),
+    class("σ=1e3", "large stretch 2", false),
 ];
 
 /// `n` deformation gradients of class `c` in 3D (row-major), seeded by `seed`.
@@ -113,7 +89,7 @@ pub fn samples3(c: &CaseClass, n: usize, barrier: bool, seed: u64) -> Vec<[f64; 
                 f.column_mut(2).neg_mut();
             }
             f
-        } else if k == 1 && !c.inverted && c.sigma3 == [1.0; 3] {
+        } else if k == 1 && !c.inverted && c.sigma3() == [1.0; 3] {
             Matrix3::identity()
         } else {
             let rot = |r: &mut ChaCha8Rng| {
@@ -128,7 +104,7 @@ pub fn samples3(c: &CaseClass, n: usize, barrier: bool, seed: u64) -> Vec<[f64; 
                 )
             };
             let (u, v) = (rot(&mut r), rot(&mut r));
-            u.matrix() * Matrix3::from_diagonal(&Vector3::from(c.sigma3)) * v.matrix().transpose()
+            u.matrix() * Matrix3::from_diagonal(&Vector3::from(c.sigma3())) * v.matrix().transpose()
         };
         if barrier && f.determinant() <= 0.0 {
             continue;
@@ -151,12 +127,14 @@ pub fn samples2(c: &CaseClass, n: usize, barrier: bool, seed: u64) -> Vec<[f64; 
                 f.column_mut(1).neg_mut();
             }
             f
-        } else if k == 1 && c.sigma2 == [1.0; 2] {
+        } else if k == 1 && c.sigma2() == [1.0; 2] {
             Matrix2::identity()
         } else {
             let u = Rotation2::new(r.gen_range(0.0..std::f64::consts::TAU));
             let v = Rotation2::new(r.gen_range(0.0..std::f64::consts::TAU));
-            u.matrix() * Matrix2::new(c.sigma2[0], 0.0, 0.0, c.sigma2[1]) * v.matrix().transpose()
+            u.matrix()
+                * Matrix2::new(c.sigma2()[0], 0.0, 0.0, c.sigma2()[1])
+                * v.matrix().transpose()
         };
         if barrier && f.determinant() <= 0.0 {
             continue;

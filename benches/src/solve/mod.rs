@@ -240,7 +240,7 @@ pub fn parameterization(
     let inner: Box<dyn Term<2>> = Box::new(elastic);
     let term: Box<dyn Term<2>> = match method {
         SolveMethod::NumericProjection => Box::new(NumericProjection::new(inner)),
-        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::tri(inner, &rest)),
+        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::new(inner, &rest)),
         _ => inner,
     };
     let solver = NewtonSolver::new(
@@ -331,7 +331,7 @@ pub fn deformation(
     let inner: Box<dyn Term<3>> = Box::new(elastic);
     let term: Box<dyn Term<3>> = match method {
         SolveMethod::NumericProjection => Box::new(NumericProjection::new(inner)),
-        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::tet(inner, &rest)),
+        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::new(inner, &rest)),
         _ => inner,
     };
     let (handles, mut x) = handle_setup(mesh);

@@ -117,41 +117,22 @@ fn weights(dm_inv: &[f64], d: usize) -> Vec<Vec<f64>> {
     crate::generic_kernel::chain_weights::<f64>(dm_inv, d)
 }
 
-impl LaplacianProxy<2> {
-    /// Proxy for a triangle term with rest data `rest` (one per stencil).
-    pub fn tri(inner: Box<dyn Term<2>>, rest: &[Rest<2>]) -> Self {
+impl<const D: usize> LaplacianProxy<D> {
+    /// Proxy for a triangle (D = 2) or tet (D = 3) term with rest data
+    /// `rest` (one per stencil).
+    pub fn new(inner: Box<dyn Term<D>>, rest: &[Rest<D>]) -> Self {
         let hess = rest
             .iter()
             .flat_map(|r| {
-                let dm: Vec<f64> = (0..4).map(|i| r.dm_inv[(i / 2, i % 2)]).collect();
-                proxy_block(&weights(&dm, 2), 2, r.measure)
+                let dm: Vec<f64> = (0..D * D).map(|i| r.dm_inv[(i / D, i % D)]).collect();
+                proxy_block(&weights(&dm, D), D, r.measure)
             })
             .collect();
         let name = format!("{}+laplacian-proxy", inner.name());
         LaplacianProxy {
             inner,
             hess,
-            k: 6,
-            name,
-        }
-    }
-}
-
-impl LaplacianProxy<3> {
-    /// Proxy for a tet term with rest data `rest` (one per stencil).
-    pub fn tet(inner: Box<dyn Term<3>>, rest: &[Rest<3>]) -> Self {
-        let hess = rest
-            .iter()
-            .flat_map(|r| {
-                let dm: Vec<f64> = (0..9).map(|i| r.dm_inv[(i / 3, i % 3)]).collect();
-                proxy_block(&weights(&dm, 3), 3, r.measure)
-            })
-            .collect();
-        let name = format!("{}+laplacian-proxy", inner.name());
-        LaplacianProxy {
-            inner,
-            hess,
-            k: 12,
+            k: D * (D + 1),
             name,
         }
     }

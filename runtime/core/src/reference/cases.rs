@@ -65,7 +65,7 @@ const fn e(name: &'static str, sigma3: Option<[f64; 3]>, sigma2: Option<[f64; 2]
 
 /// The one table: every hard case any checker visits (the union of what the
 /// runtime's tests, `ecc check` and the benchmarks' accuracy study used).
-/// Checkers pick a named subset ([`TESTS`], [`CHECK`]); σ need not be in
+/// Checkers pick a named subset ([`TESTS`], [`CHECK`], the benchmarks' `CLASSES`); σ need not be in
 /// the signed SVD's order (F = U diag(σ) Vᵀ is composed as written).
 pub const TABLE: &[Entry] = &[
     e("rest", Some([1.0, 1.0, 1.0]), Some([1.0, 1.0])),
@@ -116,6 +116,19 @@ pub const TABLE: &[Entry] = &[
     e("large stretch", Some([1e3, 1.2, 0.9]), Some([1e3, 0.9])),
     e("large stretch 2", Some([1e3, 2.0, 0.5]), Some([1e3, 0.5])),
     e("generic", Some([1.9, 1.1, 0.35]), Some([1.9, 0.35])),
+    e("uniform scale 1.3", Some([1.3, 1.3, 1.3]), Some([1.3, 1.3])),
+    e("repeated low 0.8", Some([1.5, 0.8, 0.8]), Some([0.8, 0.8])),
+    e(
+        "1e-9 gap at 1.1",
+        Some([1.1 + 1e-9, 1.1, 0.8]),
+        Some([1.1 + 1e-9, 1.1]),
+    ),
+    e(
+        "antipodal +1e-7",
+        Some([1.2, 0.7, -0.7 + 1e-7]),
+        Some([0.7, -0.7 + 1e-7]),
+    ),
+    e("sigma 1e-6 at 1", Some([1.0, 1.0, 1e-6]), Some([1.0, 1e-6])),
 ];
 
 /// The cases the runtime's and the cross-crate tests visit.
