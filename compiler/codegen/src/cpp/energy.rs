@@ -161,6 +161,9 @@ fn field_names(module: &Module) -> Vec<String> {
             .chars()
             .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
             .collect();
+        while n.contains("__") {
+            n = n.replace("__", "_");
+        }
         if n.is_empty() || n.starts_with(|c: char| c.is_ascii_digit()) {
             n = format!("p{n}");
         }
