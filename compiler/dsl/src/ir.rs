@@ -89,9 +89,9 @@ pub struct DimIr {
     pub h_sigma: Vec<Vec<Id>>,
     /// What generated code computes, specialised from what the CAS proved.
     pub spectral: SpectralIr,
-    /// Ψ is singular on det F = 0 or only defined for det F > 0 (a log, a
-    /// negative power or a fractional power of something vanishing there);
-    /// the solver must keep det F > 0.
+    /// Ψ → +∞ as det F → 0⁺ (a log or a negative power of something that
+    /// vanishes there, not cancelled; checked by growth): the solver must
+    /// keep det F > 0. Finite powers such as `I3^(1/3)` are not barriers.
     pub barrier: bool,
     /// Ψ depends only on I2 and I3 (no I1, no stretch): computable without an SVD.
     pub svd_free: bool,

@@ -142,35 +142,69 @@ pub fn sign_symmetric(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8) -
         .all(|(i, j)| invariant_under(g, conv, psi_s, i, j, true) == Some(true))
 }
 
-/// Whether Ψ has a log, a negative power or a fractional power of something
-/// that vanishes when one σ is 0 (i.e. on det F = 0).
-pub fn barrier(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8) -> bool {
+/// Whether Ψ is a barrier: Ψ → +∞ as det F → 0⁺, so the solver must keep
+/// det F > 0.
+///
+/// Candidates (structural): a log or a negative power of something that
+/// vanishes when one σ is 0. A positive fractional power (`I3^(1/3)`,
+/// `sqrt(s1^2)`) is finite there and never makes a barrier. A candidate is
+/// confirmed by growth (it may be cancelled, e.g. `I3*log(I3)` → 0): Ψ at
+/// σ = (b, t) for t = 10⁻⁴, 10⁻⁸, …, 10⁻³² (b two fixed positive
+/// stretch sets, parameters at their defaults) must increase strictly at
+/// every step (or reach +∞ and stay there) — log growth gives ≈ 9.2 per
+/// step, a power far more.
+pub fn barrier(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8, params: &[f64]) -> bool {
     let mut args: Vec<Id> = Vec::new();
     for id in g.reachable(&[psi_s]) {
         match g.get(id) {
             Node::Log(x) => args.push(*x),
             Node::Pow([b, e]) => {
-                let singular = match g.as_num(*e) {
-                    Some(r) => r < &num_rational::BigRational::zero() || !r.is_integer(),
+                let negative = match g.as_num(*e) {
+                    Some(r) => r < &num_rational::BigRational::zero(),
                     None => true,
                 };
-                if singular {
+                if negative {
                     args.push(*b);
                 }
             }
             _ => {}
         }
     }
-    for a in args {
+    let mut candidate = false;
+    'found: for a in args {
         for k in 0..dim {
             let zero = g.zero();
             let at = g.substitute(a, &|s| (s == Sym::Sigma(k)).then_some(zero));
             if conv.is_zero(g, at) == Proof::Zero {
-                return true;
+                candidate = true;
+                break 'found;
             }
         }
     }
-    false
+    candidate && grows_at_zero_det(g, psi_s, dim, params)
+}
+
+/// Ψ grows without bound as the last σ → 0⁺: strictly increasing (or +∞
+/// from some step on) with increments that do not die out (the last one at
+/// least half the first: constant for a log, growing for a power; a bounded
+/// approach such as t·log t has vanishing increments).
+fn grows_at_zero_det(g: &Graph, psi_s: Id, dim: u8, params: &[f64]) -> bool {
+    let tape = Tape::new(g, &[psi_s]);
+    let bases: [[f64; 2]; 2] = [[1.3, 0.8], [0.9, 1.1]];
+    bases.iter().all(|b| {
+        let v: Vec<f64> = (1..=8)
+            .map(|n| {
+                let mut s = vec![b[0], b[1], 0.0];
+                s[dim as usize - 1] = 10f64.powi(-4 * n);
+                tape.eval(&Env::new(dim, &s, params))[0]
+            })
+            .collect();
+        let increasing = v
+            .windows(2)
+            .all(|w| w[1] > w[0] || (w[0] == f64::INFINITY && w[1] == f64::INFINITY));
+        let (first, last) = (v[1] - v[0], v[7] - v[6]);
+        increasing && (v[7] == f64::INFINITY || last >= 0.5 * first)
+    })
 }
 
 /// Distinct denominators (bases of negative powers) and log arguments.

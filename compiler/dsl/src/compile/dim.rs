@@ -133,7 +133,7 @@ fn analyse(
         isotropy_numeric_only,
         rational: conv.rational(g, psi_s).is_some(),
         sign_symmetric: checks::sign_symmetric(g, conv, psi_s, dim),
-        barrier: checks::barrier(g, conv, psi_s, dim),
+        barrier: checks::barrier(g, conv, psi_s, dim, input.params),
         svd_free: !g.may_depend(psi, Sym::I1) && !g.uses_sigma(psi),
     })
 }
