@@ -3,7 +3,7 @@
 //! Per element (one linear tetrahedron, random rest shape and deformation,
 //! ~1/8 of them inverted), for ARAP, Symmetric Dirichlet and Stable Neo-Hookean:
 //!
-//! * `analytic`   — `tet_eval` with `Filter::Clamp`: F, signed SVD, closed-form
+//! * `analytic`   — `element_eval::<3>` with `Filter::Clamp`: F, signed SVD, closed-form
 //!   spectral data, filtered 12×12 built from the eigenmodes (plus ψ, gradient);
 //! * `numeric12`  — the raw 12×12 (analytic, unfiltered) then nalgebra
 //!   `SymmetricEigen` + clamp + rebuild (`project_psd_numeric`);

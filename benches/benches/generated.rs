@@ -1,6 +1,6 @@
 //! Generated vs hand-written energies in the per-element tet kernel.
 //!
-//! `tet_eval` (F, signed SVD, `spectral`, filtered 12×12 from the eigenmodes
+//! `element_eval::<3>` (F, signed SVD, `spectral`, filtered 12×12 from the eigenmodes
 //! with `Filter::Clamp`, plus ψ and gradient) for the generated ARAP,
 //! Symmetric Dirichlet 3D and Stable Neo-Hookean of `ecc-energies` against
 //! the runtime's hand-written `energies::{Arap, SymmetricDirichlet,

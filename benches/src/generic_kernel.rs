@@ -2,7 +2,7 @@
 //! **f32 vs f64** comparison (the runtime itself is f64-only).
 //!
 //! Clearly a *separate* implementation, written for this report: the same
-//! mathematics as `ecc_runtime::{tri_eval, tet_eval}` but simpler code.
+//! mathematics as `ecc_runtime::element_eval` but simpler code.
 //!
 //! 1. F = Ds Dm⁻¹ and the signed SVD ([`crate::linalg::signed_svd`], Jacobi on FᵀF);
 //! 2. Ψ, ∂Ψ/∂σ and A = ∂²Ψ/∂σ² by walking the energy's CAS graph

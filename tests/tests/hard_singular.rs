@@ -19,7 +19,7 @@
 //!   double-double) is undefined; other energies give the reference value
 //!   at det F = 0. At extreme σ (1e-160, 1e200, f64::MAX) derivatives may
 //!   overflow f64; then only Ψ and the filtered Hessian are checked;
-//! * the element kernels (`tet_eval`, `tri_eval`) on a collapsed or
+//! * the element kernels (`element_eval` in 3D and 2D) on a collapsed or
 //!   inverted current element give Ψ = +∞ with zero gradient and Hessian,
 //!   or finite values — never NaN — for every filter but `None`.
 

@@ -10,7 +10,7 @@ use serde::Serialize;
 /// The ways of computing an element's energy, gradient and Hessian.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 pub enum Method {
-    /// Generated energy (ecc-energies) in `tri_eval` / `tet_eval` with
+    /// Generated energy (ecc-energies) in `element_eval` with
     /// `Filter::Clamp`: signed SVD, closed-form eigenvalues, modal Hessian.
     Analytic,
     /// The same kernel with the energy interpreted at run time from its

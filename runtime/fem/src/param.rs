@@ -2,7 +2,7 @@
 //! disk-topology triangle mesh, from a Tutte start.
 //!
 //! 1. **Rest frames.** Each triangle is expressed in its own isometric 2D
-//!    frame (`TriRest::from_3d`), so J_q = Ds(uv) Dm⁻¹ is the Jacobian of the
+//!    frame (`Rest::<2>::from_3d`), so J_q = Ds(uv) Dm⁻¹ is the Jacobian of the
 //!    map from the surface to the plane.
 //! 2. **Normalisation** (`normalize_area`, default on): the 3D positions are
 //!    scaled by 1/√A so the total rest area Σ|q| is 1. Energies such as
