@@ -253,31 +253,28 @@ pub fn rotations2(r: &mut ChaCha8Rng, n: usize) -> Vec<(Matrix2<f64>, Matrix2<f6
     out
 }
 
-/// Random 3×3 F: alternately general (entries in ±1.5, may be inverted) and
+/// Random D×D F: alternately general (entries in ±1.5, may be inverted) and
 /// near the identity.
-pub fn random_f3(r: &mut ChaCha8Rng, n: usize) -> Vec<Matrix3<f64>> {
+pub fn random_f<const D: usize>(r: &mut ChaCha8Rng, n: usize) -> Vec<SMatrix<f64, D, D>> {
     (0..n)
         .map(|k| {
             if k % 2 == 0 {
-                Matrix3::from_fn(|_, _| r.gen_range(-1.5..1.5))
+                SMatrix::from_fn(|_, _| r.gen_range(-1.5..1.5))
             } else {
-                Matrix3::identity() + Matrix3::from_fn(|_, _| r.gen_range(-0.3..0.3))
+                SMatrix::identity() + SMatrix::from_fn(|_, _| r.gen_range(-0.3..0.3))
             }
         })
         .collect()
 }
 
-/// Random 2×2 F (as [`random_f3`]).
+/// [`random_f`] in 3D.
+pub fn random_f3(r: &mut ChaCha8Rng, n: usize) -> Vec<Matrix3<f64>> {
+    random_f::<3>(r, n)
+}
+
+/// [`random_f`] in 2D.
 pub fn random_f2(r: &mut ChaCha8Rng, n: usize) -> Vec<Matrix2<f64>> {
-    (0..n)
-        .map(|k| {
-            if k % 2 == 0 {
-                Matrix2::from_fn(|_, _| r.gen_range(-1.5..1.5))
-            } else {
-                Matrix2::identity() + Matrix2::from_fn(|_, _| r.gen_range(-0.3..0.3))
-            }
-        })
-        .collect()
+    random_f::<2>(r, n)
 }
 
 /// Random signed singular values in the runtime's order (|σ0| ≥ |σ1| ≥ |σ2|,
