@@ -68,3 +68,27 @@ fn literals_at_the_edges_of_the_range_are_accepted() {
         assert!(compile(src, "t").is_ok(), "{src}");
     }
 }
+
+#[test]
+fn a_folded_constant_beyond_f64_is_an_error_at_psi() {
+    for (src, overflow) in [
+        ("psi = 10^400*I2\n", true),
+        ("psi = 1e200*1e200*I2 + I1\n", true),
+        ("psi = I2/10^400\n", false),
+    ] {
+        let errs = compile(src, "t")
+            .err()
+            .map(|d| d.errors)
+            .unwrap_or_default();
+        assert!(
+            errs.iter().any(
+                |e| matches!(e, Error::NumberNotF64 { overflow: o, .. } if *o == overflow)
+                    && e.span().range().start == 6
+            ),
+            "{src}: {errs:?}"
+        );
+    }
+    insta::assert_snapshot!(render("param mu = 1\npsi = mu*I2 + 10^400*I1\n"));
+    // intermediate constants may be huge when the result fits
+    assert!(compile("psi = 10^400*10^-400*I2 + 1e300*1e-300*I1", "t").is_ok());
+}

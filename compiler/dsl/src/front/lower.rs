@@ -28,12 +28,38 @@ pub fn lower_program(prog: &Program, dim: u8) -> Result<(Graph, Id), Vec<Error>>
         lets.push(v);
     }
     let psi = lower_expr(&mut g, &prog.psi, dim, &lets, &lets_d, &mut errors);
+    if let Some(p) = psi {
+        errors.extend(constants_beyond_f64(&g, p, prog.psi_span));
+    }
     match psi {
         Some(p) if errors.is_empty() => Ok((g, p)),
         // `errors` is empty only when psi was poisoned by an earlier
         // (already reported) error.
         _ => Err(errors),
     }
+}
+
+/// Constants of Ψ (after exact folding: `10^400*I2`, `1e200*1e200*I2`)
+/// that do not fit an f64, reported at the `psi` expression like a literal
+/// out of range ([`Error::NumberNotF64`]); the text is the power of ten.
+/// Intermediate constants may be huge (`10^400*10^-400*I2` is `I2`): only
+/// those left in Ψ, which the generated code would evaluate, count.
+fn constants_beyond_f64(g: &Graph, psi: Id, span: crate::span::Span) -> Option<Error> {
+    g.reachable(&[psi]).into_iter().find_map(|id| {
+        let r = g.as_num(id)?;
+        let v = crate::cas::rat::to_f64(r);
+        let overflow = !v.is_finite();
+        let underflow = !num_traits::Zero::is_zero(r) && v.abs() < f64::MIN_POSITIVE;
+        (overflow || underflow).then(|| {
+            let digits = |n: &num_bigint::BigInt| n.abs().to_string().len() as i64;
+            let exp = digits(r.numer()) - digits(r.denom());
+            Error::NumberNotF64 {
+                span,
+                text: format!("≈1e{exp} (a constant of psi after folding)"),
+                overflow,
+            }
+        })
+    })
 }
 
 /// Lower one expression. `None` when it (or a let it uses) failed; the
