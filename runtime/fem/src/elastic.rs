@@ -156,6 +156,21 @@ impl<E: ?Sized, S: Simplex> Elastic<E, S> {
     }
 }
 
+/// Rest data of every element (vertex ids checked first), from its K rest
+/// positions by `make`; the first failure names its element.
+fn rest_data<P: Copy, R, const K: usize>(
+    rest: &[P],
+    elements: &[[usize; K]],
+    make: impl Fn([P; K]) -> Result<R, RestError>,
+) -> Result<Vec<R>, FemError> {
+    check_indices(elements, rest.len())?;
+    elements
+        .iter()
+        .enumerate()
+        .map(|(q, t)| make(t.map(|v| rest[v])).map_err(|e| rest_error(q, e)))
+        .collect()
+}
+
 impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
     /// Triangles with planar rest positions (counter-clockwise = positive area).
     pub fn planar(
@@ -163,14 +178,7 @@ impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
         rest: &[[f64; 2]],
         tris: &[[usize; 3]],
     ) -> Result<Self, FemError> {
-        check_indices(tris, rest.len())?;
-        let r = tris
-            .iter()
-            .enumerate()
-            .map(|(q, t)| {
-                Rest::<2>::new([rest[t[0]], rest[t[1]], rest[t[2]]]).map_err(|e| rest_error(q, e))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let r = rest_data(rest, tris, Rest::<2>::new)?;
         Ok(Self::from_rest(energy, tris, r))
     }
 
@@ -180,15 +188,7 @@ impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
         rest: &[[f64; 3]],
         tris: &[[usize; 3]],
     ) -> Result<Self, FemError> {
-        check_indices(tris, rest.len())?;
-        let r = tris
-            .iter()
-            .enumerate()
-            .map(|(q, t)| {
-                Rest::<2>::from_3d([rest[t[0]], rest[t[1]], rest[t[2]]])
-                    .map_err(|e| rest_error(q, e))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let r = rest_data(rest, tris, Rest::<2>::from_3d)?;
         Ok(Self::from_rest(energy, tris, r))
     }
 }
@@ -196,15 +196,7 @@ impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
 impl<E: Energy<3> + ?Sized> Elastic<E, Tet> {
     /// Tets with rest positions (positive volume required).
     pub fn new(energy: Arc<E>, rest: &[[f64; 3]], tets: &[[usize; 4]]) -> Result<Self, FemError> {
-        check_indices(tets, rest.len())?;
-        let r = tets
-            .iter()
-            .enumerate()
-            .map(|(q, t)| {
-                Rest::<3>::new([rest[t[0]], rest[t[1]], rest[t[2]], rest[t[3]]])
-                    .map_err(|e| rest_error(q, e))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let r = rest_data(rest, tets, Rest::<3>::new)?;
         Ok(Self::from_rest(energy, tets, r))
     }
 }
