@@ -11,9 +11,11 @@ mod common;
 use common::energies::*;
 use common::*;
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
-use ecc_runtime::reference::{fd_gradient_vec, fd_hessian_f, project_psd_numeric};
-use ecc_runtime::{Energy, Filter, eigen_f, gradient_f, hessian_f, signed_svd2, signed_svd3};
-use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, SymmetricEigen};
+use ecc_runtime::reference::{fd_gradient_vec, fd_hessian_f, project_psd_f};
+use ecc_runtime::{
+    Dim, Energy, FMat, FVec, Filter, Space, eigen_f, gradient_f, hessian_f, signed_svd,
+};
+use nalgebra::{DMatrix, DVector, SMatrix, SymmetricEigen};
 
 /// Gradient vs central differences, relative to max(1, ‖g‖∞). The differences
 /// reach ≈1e-10; a sign or factor-2 error gives O(1).
@@ -44,39 +46,27 @@ struct Point {
     filtered: Vec<(Filter, DMatrix<f64>, DMatrix<f64>)>,
 }
 
-fn eval3(e: &dyn Energy<3>, f: &Matrix3<f64>, fd: bool) -> Option<Point> {
-    let svd = signed_svd3(f);
-    let s = e.spectral(&svd.sigma);
-    if !s.psi.is_finite() {
-        return None;
-    }
-    let h = hessian_f(&svd, &s, Filter::None);
-    let (vals, vecs) = eigen_f(&svd, &s);
-    Some(Point {
-        g: DVector::from_column_slice(gradient_f(&svd, &s).as_slice()),
-        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_vec(e, f).as_slice())),
-        h: dynm(&h),
-        h_fd: fd.then(|| dynm(&fd_hessian_f(e, f))),
-        vals: vals.to_vec(),
-        vecs: vecs
-            .iter()
-            .map(|v| DVector::from_column_slice(v.as_slice()))
-            .collect(),
-        filtered: FILTERS
-            .iter()
-            .map(|&fl| {
-                (
-                    fl,
-                    dynm(&hessian_f(&svd, &s, fl)),
-                    dynm(&project_psd_numeric(&h, fl)),
-                )
-            })
-            .collect(),
-    })
+/// A d² × d² F-space matrix as a dynamic one.
+fn dynf<const D: usize>(m: &FMat<D>) -> DMatrix<f64>
+where
+    Space<D>: Dim<D>,
+{
+    DMatrix::from_fn(D * D, D * D, |i, j| m[(i, j)])
 }
 
-fn eval2(e: &dyn Energy<2>, f: &Matrix2<f64>, fd: bool) -> Option<Point> {
-    let svd = signed_svd2(f);
+/// A d² F-space vector as a dynamic one.
+fn dynv<const D: usize>(v: &FVec<D>) -> DVector<f64>
+where
+    Space<D>: Dim<D>,
+{
+    DVector::from_fn(D * D, |i, _| v[i])
+}
+
+fn eval<const D: usize>(e: &dyn Energy<D>, f: &SMatrix<f64, D, D>, fd: bool) -> Option<Point>
+where
+    Space<D>: Dim<D>,
+{
+    let svd = signed_svd(f);
     let s = e.spectral(&svd.sigma);
     if !s.psi.is_finite() {
         return None;
@@ -84,22 +74,19 @@ fn eval2(e: &dyn Energy<2>, f: &Matrix2<f64>, fd: bool) -> Option<Point> {
     let h = hessian_f(&svd, &s, Filter::None);
     let (vals, vecs) = eigen_f(&svd, &s);
     Some(Point {
-        g: DVector::from_column_slice(gradient_f(&svd, &s).as_slice()),
-        g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_vec(e, f).as_slice())),
-        h: dynm(&h),
-        h_fd: fd.then(|| dynm(&fd_hessian_f(e, f))),
-        vals: vals.to_vec(),
-        vecs: vecs
-            .iter()
-            .map(|v| DVector::from_column_slice(v.as_slice()))
-            .collect(),
+        g: dynv::<D>(&gradient_f(&svd, &s)),
+        g_fd: fd.then(|| dynv::<D>(&fd_gradient_vec(e, f))),
+        h: dynf::<D>(&h),
+        h_fd: fd.then(|| dynf::<D>(&fd_hessian_f(e, f))),
+        vals: vals.as_ref().to_vec(),
+        vecs: vecs.as_ref().iter().map(dynv::<D>).collect(),
         filtered: FILTERS
             .iter()
             .map(|&fl| {
                 (
                     fl,
-                    dynm(&hessian_f(&svd, &s, fl)),
-                    dynm(&project_psd_numeric(&h, fl)),
+                    dynf::<D>(&hessian_f(&svd, &s, fl)),
+                    dynf::<D>(&project_psd_f::<D>(&h, fl)),
                 )
             })
             .collect(),
@@ -253,7 +240,7 @@ fn hard_cases_3d_all_energies() {
                 // Central differences are meaningless across a genuine pole.
                 let fd = sym || !case.antipodal;
                 let label = format!("{} / {} / σ = {:?}", e.name(), case.name, case.sigma);
-                if let Some(p) = eval3(e.as_ref(), &f, fd) {
+                if let Some(p) = eval(e.as_ref(), &f, fd) {
                     check(&p, &label, &mut worst);
                 }
             }
@@ -275,7 +262,7 @@ fn hard_cases_2d_all_energies() {
             for (e, sym) in energies_2d() {
                 let fd = sym || !case.antipodal;
                 let label = format!("{} / {} / σ = {:?}", e.name(), case.name, case.sigma);
-                if let Some(p) = eval2(e.as_ref(), &f, fd) {
+                if let Some(p) = eval(e.as_ref(), &f, fd) {
                     check(&p, &label, &mut worst);
                 }
             }
@@ -294,7 +281,7 @@ fn random_f() {
     for f in random_f3(&mut r, 12) {
         for (e, _) in energies_3d() {
             let label = format!("{} / random F = {:?}", e.name(), f.as_slice());
-            if let Some(p) = eval3(e.as_ref(), &f, true) {
+            if let Some(p) = eval(e.as_ref(), &f, true) {
                 check(&p, &label, &mut worst);
             }
         }
@@ -302,7 +289,7 @@ fn random_f() {
     for f in random_f2(&mut r, 12) {
         for (e, _) in energies_2d() {
             let label = format!("{} / random F = {:?}", e.name(), f.as_slice());
-            if let Some(p) = eval2(e.as_ref(), &f, true) {
+            if let Some(p) = eval(e.as_ref(), &f, true) {
                 check(&p, &label, &mut worst);
             }
         }
