@@ -39,7 +39,7 @@
 //! | [`point`] | [`gradient_f`], [`hessian_f`] (raw or filtered), [`eigen_f`]: F-space quantities at one point |
 //! | [`element`] | [`Rest<D>`] (Dm⁻¹, measure), [`element_f`], [`element_psi`], [`element_eval`] (x-space, × rest measure) |
 //! | [`energies`] | hand-written ARAP, Symmetric Dirichlet, Stable Neo-Hookean |
-//! | [`reference`](mod@reference) | nalgebra projection and central differences [`fd_gradient_f`](reference::fd_gradient_f), [`fd_hessian_f`](reference::fd_hessian_f) (tests, benches, `ecc check`); with the `cases` feature, `reference::cases`: the one named hard-case table and seeded rotations |
+//! | [`reference`](mod@reference) | nalgebra projection and central differences [`fd_gradient_f`](reference::fd_gradient_f), [`fd_hessian_f`](reference::fd_hessian_f) (tests, benches, `ecc check`); [`reference::check`]: the F-space checker (gradient, raw Hessian vs differences, eigenpairs vs `SymmetricEigen`, filtered Hessians PSD and equal to the numeric projection); with the `cases` feature, `reference::cases`: the one named hard-case table and seeded rotations |
 //!
 //! ## Writing an energy
 //!

@@ -7,6 +7,7 @@
 
 #[cfg(feature = "cases")]
 pub mod cases;
+pub mod check;
 mod fd;
 
 pub use fd::{fd_gradient, fd_gradient_f, fd_gradient_vec, fd_hessian, fd_hessian_f};

@@ -1,12 +1,12 @@
 //! F-space checks of one energy at one deformation gradient.
 //!
-//! At F = U diag(σ) Vᵀ the energy's [`Spectral`](ecc_runtime::Spectral) is
+//! At F = U diag(σ) Vᵀ the energy's [`Spectral`](crate::Spectral) is
 //! lifted by the runtime to vec(∂Ψ/∂F), the raw Hessian ∂²Ψ/∂f², its
 //! analytic eigenpairs and the filtered Hessians. [`check_f`] tests
 //!
 //! * Ψ from `psi` equals Ψ from `spectral` (and from `psi_i2_i3` when offered);
 //! * the gradient and the raw Hessian against central differences of Ψ(F)
-//!   (`ecc_runtime::reference`, whose step ladder picks each entry's step
+//!   ([`crate::reference`], whose step ladder picks each entry's step
 //!   automatically), relative to max(1, max-norm). Where the ladder picks a
 //!   poor step for some Hessian entry (it happens at σ = (1e3, 1.2, 0.9) under
 //!   some rotations, for the hand-written ARAP as well), the Hessian is also
@@ -17,12 +17,21 @@
 //! * every filtered Hessian: finite, exactly symmetric, PSD (down to the
 //!   filter's floor) and equal to the numeric projection of the raw Hessian.
 
-use ecc_runtime::reference::{fd_gradient_f, fd_hessian_f, project_psd_f};
-use ecc_runtime::{
+use crate::reference::{fd_gradient_f, fd_hessian_f, project_psd_f, psi_f};
+use crate::{
     Dim, Energy, FMat, FVec, Filter, Space, Spectral, Svd, eigen_f, gradient_f, hessian_f,
     signed_svd,
 };
 use nalgebra::{DMatrix, DVector, SMatrix, SymmetricEigen};
+
+/// |a − b| ≤ tol · max(1, |a|, |b|), with equal non-finite values (same
+/// infinity, or both NaN) accepted.
+pub fn close(a: f64, b: f64, tol: f64) -> bool {
+    if !a.is_finite() || !b.is_finite() {
+        return a == b || (a.is_nan() && b.is_nan());
+    }
+    (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)
+}
 
 /// Gradient vs central differences (which reach ≈1e-10; a wrong factor gives O(1)).
 pub const GRAD_TOL: f64 = 1e-7;
@@ -94,8 +103,7 @@ fn fixed_step_hessians<const D: usize>(
     f: &SMatrix<f64, D, D>,
     sigma_min: f64,
 ) -> Vec<DMatrix<f64>> {
-    let psi =
-        |y: &[f64]| ecc_runtime::reference::psi_f(e, &SMatrix::<f64, D, D>::from_column_slice(y));
+    let psi = |y: &[f64]| psi_f(e, &SMatrix::<f64, D, D>::from_column_slice(y));
     [1e-2, 1e-3]
         .iter()
         .map(|c| fd_hessian_fixed(&psi, f.as_slice(), c * sigma_min.max(1e-6)))
@@ -110,7 +118,7 @@ fn i2_i3_tol(norm: f64, det: f64, dim: i32) -> f64 {
 }
 
 fn psi_agrees(label: &str, a: f64, b: f64, what: &str) -> Result<(), String> {
-    if crate::close(a, b, 1e-12) {
+    if close(a, b, 1e-12) {
         Ok(())
     } else {
         Err(format!("{label}: {what} {a:e} vs spectral Ψ {b:e}"))
@@ -179,7 +187,7 @@ where
     if e.info().svd_free_psi {
         let p = e.psi_i2_i3(f.norm_squared(), det);
         let p = p.ok_or_else(|| format!("{label}: svd_free_psi without psi_i2_i3"))?;
-        if !crate::close(p, s.psi, i2_i3_tol(f.norm(), det, D as i32)) {
+        if !close(p, s.psi, i2_i3_tol(f.norm(), det, D as i32)) {
             return Err(format!(
                 "{label}: psi_i2_i3 {p:e} vs spectral Ψ {:e}",
                 s.psi
