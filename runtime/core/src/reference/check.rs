@@ -1,6 +1,6 @@
 //! F-space checks of one energy at one deformation gradient.
 //!
-//! At F = U diag(σ) Vᵀ the energy's [`Spectral`](crate::Spectral) is
+//! At F = U diag(σ) Vᵀ the energy's [`Spectral`] is
 //! lifted by the runtime to vec(∂Ψ/∂F), the raw Hessian ∂²Ψ/∂f², its
 //! analytic eigenpairs and the filtered Hessians. [`check_f`] tests
 //!
