@@ -42,41 +42,17 @@ fn compare<const D: usize>(
     }
 }
 
-fn sigmas3() -> Vec<[f64; 3]> {
-    let mut r = rng(51);
-    let mut v: Vec<[f64; 3]> = hard_cases_3d().iter().map(|c| c.sigma).collect();
-    v.extend((0..200).map(|_| random_sigma::<3>(&mut r)));
+/// The hard cases and 200 random σ (seed 49 + d).
+fn sigmas<const D: usize>() -> Vec<[f64; D]> {
+    let mut r = rng(49 + D as u64);
+    let mut v: Vec<[f64; D]> = select::<D>(TESTS).iter().map(|c| c.sigma).collect();
+    v.extend((0..200).map(|_| random_sigma::<D>(&mut r)));
     v
 }
 
-fn sigmas2() -> Vec<[f64; 2]> {
-    let mut r = rng(52);
-    let mut v: Vec<[f64; 2]> = hard_cases_2d().iter().map(|c| c.sigma).collect();
-    v.extend((0..200).map(|_| random_sigma::<2>(&mut r)));
-    v
-}
-
-fn run3(generated: &dyn Energy<3>, hw: &dyn Energy<3>, tol: f64) {
+fn run<const D: usize>(generated: &dyn Energy<D>, hw: &dyn Energy<D>, tol: f64) {
     let mut failures = Vec::new();
-    for s in sigmas3() {
-        let label = format!("{} at σ = {s:?}", generated.name());
-        if let Err(e) = compare(&label, &generated.spectral(&s), &hw.spectral(&s), tol) {
-            failures.push(e);
-        }
-        if !close(generated.psi(&s), hw.psi(&s), tol) {
-            failures.push(format!(
-                "{label}: psi {} vs {}",
-                generated.psi(&s),
-                hw.psi(&s)
-            ));
-        }
-    }
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
-}
-
-fn run2(generated: &dyn Energy<2>, hw: &dyn Energy<2>, tol: f64) {
-    let mut failures = Vec::new();
-    for s in sigmas2() {
+    for s in sigmas::<D>() {
         let label = format!("{} at σ = {s:?}", generated.name());
         if let Err(e) = compare(&label, &generated.spectral(&s), &hw.spectral(&s), tol) {
             failures.push(e);
@@ -94,8 +70,8 @@ fn run2(generated: &dyn Energy<2>, hw: &dyn Energy<2>, tol: f64) {
 
 #[test]
 fn arap_matches_hand_written() {
-    run3(&Arap::new(), &hand::Arap, TOL);
-    run2(&Arap::new(), &hand::Arap, TOL);
+    run::<3>(&Arap::new(), &hand::Arap, TOL);
+    run::<2>(&Arap::new(), &hand::Arap, TOL);
     assert_eq!(
         Energy::<3>::info(&Arap::new()),
         Energy::<3>::info(&hand::Arap)
@@ -104,8 +80,8 @@ fn arap_matches_hand_written() {
 
 #[test]
 fn symmetric_dirichlet_matches_hand_written() {
-    run3(&SymmetricDirichlet3::new(), &hand::SymmetricDirichlet, TOL);
-    run2(&SymmetricDirichlet2::new(), &hand::SymmetricDirichlet, TOL);
+    run::<3>(&SymmetricDirichlet3::new(), &hand::SymmetricDirichlet, TOL);
+    run::<2>(&SymmetricDirichlet2::new(), &hand::SymmetricDirichlet, TOL);
     assert_eq!(
         Energy::<3>::info(&SymmetricDirichlet3::new()),
         Energy::<3>::info(&hand::SymmetricDirichlet)
@@ -124,8 +100,8 @@ fn stable_neo_hookean_matches_hand_written() {
         Energy::<3>::set_param(&mut generated, "mu", mu).unwrap_or_else(|e| panic!("{e}"));
         Energy::<3>::set_param(&mut generated, "lambda", lambda).unwrap_or_else(|e| panic!("{e}"));
         let hw = hand::StableNeoHookean::new(mu, lambda);
-        run3(&generated, &hw, TOL);
-        run2(&generated, &hw, TOL);
+        run::<3>(&generated, &hw, TOL);
+        run::<2>(&generated, &hw, TOL);
         assert_eq!(Energy::<3>::info(&generated), Energy::<3>::info(&hw));
         assert_eq!(
             Energy::<2>::psi_i2_i3(&generated, 2.3, 0.7).map(|p| close(
