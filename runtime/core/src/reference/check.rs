@@ -197,14 +197,60 @@ where
     if !s.psi.is_finite() {
         return Ok(false);
     }
+    check_point(e, f, (&svd, &s), fd, true, label, worst)?;
+    Ok(true)
+}
+
+/// [`check_f`] without the Ψ cross-checks and without the fixed-step
+/// fallback for the Hessian: the lift alone, against the step ladder only
+/// (the runtime's own tests, whose hand-written energies need no fallback).
+pub fn check_lift<const D: usize>(
+    e: &dyn Energy<D>,
+    f: &SMatrix<f64, D, D>,
+    fd: bool,
+    label: &str,
+    worst: &mut Worst,
+) -> Result<bool, String>
+where
+    Space<D>: Dim<D>,
+{
+    let svd = signed_svd(f);
+    let s = e.spectral(&svd.sigma);
+    if !s.psi.is_finite() {
+        return Ok(false);
+    }
+    check_point(e, f, (&svd, &s), fd, false, label, worst)?;
+    Ok(true)
+}
+
+/// The lift at one F (with differences when `fd`), checked; `fallback`
+/// admits the fixed-step Hessians (see the module docs).
+fn check_point<const D: usize>(
+    e: &dyn Energy<D>,
+    f: &SMatrix<f64, D, D>,
+    (svd, s): (&Svd<D>, &Spectral<D>),
+    fd: bool,
+    fallback: bool,
+    label: &str,
+    worst: &mut Worst,
+) -> Result<(), String>
+where
+    Space<D>: Dim<D>,
+{
     let p = Point {
         g_fd: fd.then(|| DVector::from_column_slice(fd_gradient_f(e, f).as_slice())),
         h_fd: fd.then(|| dynf::<D>(&fd_hessian_f(e, f))),
-        ..lift(&svd, &s)
+        ..lift(svd, s)
     };
     let smin = svd.sigma.iter().fold(f64::INFINITY, |m, x| m.min(x.abs()));
-    check(&p, label, worst, &|| fixed_step_hessians(e, f, smin))?;
-    Ok(true)
+    let fixed = || {
+        if fallback {
+            fixed_step_hessians(e, f, smin)
+        } else {
+            Vec::new()
+        }
+    };
+    check(&p, label, worst, &fixed)
 }
 
 fn check(
@@ -282,6 +328,9 @@ fn check_eigen(p: &Point, label: &str, hs: f64, worst: &mut Worst) -> Result<(),
         .copied()
         .collect();
     theirs.sort_by(|a, b| a.total_cmp(b));
+    if p.vals.windows(2).any(|w| w[0] > w[1]) {
+        return Err(format!("{label}: eigenvalues not ascending {:?}", p.vals));
+    }
     for (k, (a, b)) in p.vals.iter().zip(&theirs).enumerate() {
         let err = (a - b).abs() / hs;
         worst.eig = worst.eig.max(err);
