@@ -3,7 +3,9 @@
 //! Closed form (Smith et al. 2019 eqs. 28–30): Ψ_σi = 2(σ_i − 1), A = 2I
 //! (decoupled), flips λ_l = 2, twists λ_t = (Ψ_i + Ψ_j)/(σ_i + σ_j) =
 //! 2 − 4/(σ_i + σ_j). The twist has a genuine pole at σ_i + σ_j = 0 (ARAP is
-//! not sign-symmetric): exactly there it is −∞ and the filters drop the mode.
+//! not sign-symmetric): exactly there it is +∞, the convention every back end
+//! follows for a pole (the two one-sided limits differ in sign), and the
+//! filters map it to their floor.
 
 use crate::energy::{Energy, EnergyInfo};
 use crate::spectral::{ScaleBlock, Spectral, pair_indices};
@@ -26,7 +28,12 @@ fn spectral<const D: usize>(s: &[f64; D]) -> Spectral<D> {
     let mut flip = [0.0; 3];
     for k in 0..Spectral::<D>::PAIRS {
         let (i, j) = pair_indices::<D>(k);
-        twist[k] = 2.0 - 4.0 / (s[i] + s[j]);
+        let sum = s[i] + s[j];
+        twist[k] = if sum == 0.0 {
+            f64::INFINITY // the pole itself (see the module docs)
+        } else {
+            2.0 - 4.0 / sum
+        };
         flip[k] = 2.0;
     }
     Spectral {
