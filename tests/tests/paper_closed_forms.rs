@@ -21,7 +21,11 @@ fn sigmas() -> Vec<[f64; 3]> {
 /// Eqs. 28/30, t = 2 − 4/(σi + σj); on the pole σi + σj = 0 itself every
 /// back end returns +∞ (the one-sided limits are ∓∞).
 fn arap_twist(sum: f64) -> f64 {
-    if sum == 0.0 { f64::INFINITY } else { 2.0 - 4.0 / sum }
+    if sum == 0.0 {
+        f64::INFINITY
+    } else {
+        2.0 - 4.0 / sum
+    }
 }
 
 #[test]

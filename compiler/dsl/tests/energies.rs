@@ -28,7 +28,10 @@ const LIBRARY: &[&str] = &[
 ];
 
 fn source(name: &str) -> String {
-    let path = format!("{}/../../energies/psi/{name}.psi", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../energies/psi/{name}.psi",
+        env!("CARGO_MANIFEST_DIR")
+    );
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 

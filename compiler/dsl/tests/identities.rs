@@ -13,7 +13,10 @@ fn div(src: &str, dim: u8, i: usize, j: usize, s: i64) -> Option<String> {
 }
 
 fn library(name: &str, dim: u8) -> DimIr {
-    let path = format!("{}/../../energies/psi/{name}.psi", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../../energies/psi/{name}.psi",
+        env!("CARGO_MANIFEST_DIR")
+    );
     let src = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     compile_dim(&src, name, dim).unwrap_or_else(|d| panic!("{}", d.render(name, &src)))
 }
