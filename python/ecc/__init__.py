@@ -131,6 +131,7 @@ def deform(
     substeps: int = 1,
     max_iters: Optional[int] = None,
     tol: Optional[float] = None,
+    progress: Optional[ProgressFn] = None,
 ) -> Dict[str, Any]:
     """Deform a tet mesh by moving handle vertices (ecc-fem's HandleDeformation).
 
@@ -141,6 +142,9 @@ def deform(
     handles : vertex ids held fixed (and moved to ``targets``).
     targets : (len(handles), 3) float array — where the handles go.
     substeps : split the handle motion into this many solves.
+    progress : called after every Newton step (of every substep) with a dict
+        (iter, energy, grad_inf, step, ...); return False to stop (status
+        "Interrupted", no further substep). Ctrl-C stops it the same way.
 
     Returns a dict with ``x`` (n, 3) final positions, ``status``,
     ``converged``, ``iterations`` (all substeps), ``substeps``, ``inverted``,
@@ -153,7 +157,7 @@ def deform(
         raise MeshError(f"handles must be integer vertex ids, got dtype {h.dtype}")
     tg = _two_d(_vertices(targets), "targets")
     return _ecc.deform(
-        v, t, energy, [int(x) for x in h], tg, int(substeps), max_iters, tol
+        v, t, energy, [int(x) for x in h], tg, int(substeps), max_iters, tol, progress
     )
 
 

@@ -75,6 +75,7 @@ def deform(
     substeps: int = 1,
     max_iters: Optional[int] = None,
     tol: Optional[float] = None,
+    progress: Optional[ProgressFn] = None,
 ) -> Dict[str, Any]: ...
 def simulate(
     scene: PathLike,

@@ -122,7 +122,7 @@ pub fn parameterize<'py>(
 
 /// Low-level handle deformation (use `ecc.deform`).
 #[pyfunction]
-#[pyo3(signature = (v, t, energy, handles, targets, substeps, max_iters, tol))]
+#[pyo3(signature = (v, t, energy, handles, targets, substeps, max_iters, tol, progress))]
 #[allow(clippy::too_many_arguments)]
 pub fn deform<'py>(
     py: Python<'py>,
@@ -134,6 +134,7 @@ pub fn deform<'py>(
     substeps: usize,
     max_iters: Option<usize>,
     tol: Option<f64>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let pos = positions("V", &v)?;
     let n = pos.len();
@@ -166,12 +167,13 @@ pub fn deform<'py>(
     if let Some(x) = tol {
         params.tol_abs = x;
     }
+    let mut hook = Hook::new(progress);
     let out = py.detach(|| {
         let mut h = HandleDeformation::new(&mesh, e, &hs, params)?;
-        let r = h.solve(&tg, substeps.max(1))?;
+        let r = h.solve_with(&tg, substeps.max(1), |rec, _| hook.step(rec))?;
         Ok::<_, ecc_fem::FemError>((r, h.positions().to_vec()))
     });
-    py.check_signals()?;
+    hook.finish()?;
     let (r, x) = out.map_err(solve_error)?;
     let last = r
         .substeps

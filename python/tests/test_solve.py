@@ -106,8 +106,9 @@ def test_ctrl_c_interrupts_a_long_solve(grid):
     assert ecc.parameterize(*grid, "sd")["converged"]
 
 
-def test_deform_a_bar():
-    n = 4
+def _bar(n=4):
+    """A 1 x 0.25 x 0.25 bar of n cubes (6 positive tets each), its left and
+    right end vertices as handles, the right end's targets moved by +0.3 in x."""
     xs = np.linspace(0, 1, n + 1)
     ys = np.linspace(0, 0.25, 2)
     P = np.array([[x, y, z] for z in ys for y in ys for x in xs])
@@ -128,12 +129,29 @@ def test_deform_a_bar():
     handles = np.concatenate([left, right])
     targets = P[handles].copy()
     targets[len(left):, 0] += 0.3
+    return P, T, handles, targets
+
+
+def test_deform_a_bar():
+    P, T, handles, targets = _bar()
+    seen = []
     out = ecc.deform(P, T, ecc.Energy.builtin("snh", mu=1, lambda_=10), handles=handles,
-                     targets=targets, substeps=2)
+                     targets=targets, substeps=2, progress=seen.append)
     assert out["converged"] and out["inverted"] == 0
     np.testing.assert_allclose(out["x"][handles], targets)
     mid = out["x"][np.isclose(P[:, 0], 0.5)]
     assert np.all(mid[:, 0] > 0.5)  # the middle moved along
+    # the callback saw every Newton step of both substeps
+    assert len(seen) == out["iterations"] and all("grad_inf" in r for r in seen)
+
+
+def test_returning_false_stops_a_deformation():
+    P, T, handles, targets = _bar()
+    calls = []
+    out = ecc.deform(P, T, "snh", handles=handles, targets=targets, substeps=3,
+                     progress=lambda r: calls.append(r) or False)
+    assert len(calls) == 1  # stopped at the first step: no further substep ran
+    assert out["status"] == "Interrupted" and not out["converged"] and out["substeps"] == 1
 
 
 def test_simulate_a_scene(root, tmp_path):

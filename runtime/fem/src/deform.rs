@@ -8,6 +8,7 @@
 //! next to the handles from inverting in one jump: needed for barrier
 //! energies, helpful for convergence of the others.
 
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
 use ecc_mesh::TetMesh;
@@ -17,7 +18,7 @@ use serde::{Deserialize, Serialize};
 use crate::elastic::{Elastic, Tet};
 use crate::error::FemError;
 use crate::newton::params::NewtonParams;
-use crate::newton::record::NewtonResult;
+use crate::newton::record::{IterationRecord, NewtonResult};
 use crate::newton::solver::NewtonSolver;
 use crate::quality::count_inverted;
 use crate::term::Term;
@@ -115,6 +116,19 @@ impl HandleDeformation {
         targets: &[[f64; 3]],
         substeps: usize,
     ) -> Result<DeformResult, FemError> {
+        self.solve_with(targets, substeps, |_, _| ControlFlow::Continue(()))
+    }
+
+    /// [`solve`](Self::solve) with `on_iteration` called after every Newton
+    /// step of every substep (the record and the current positions);
+    /// returning `Break` stops the solve (status `Interrupted`) and no
+    /// further substep runs.
+    pub fn solve_with(
+        &mut self,
+        targets: &[[f64; 3]],
+        substeps: usize,
+        mut on_iteration: impl FnMut(&IterationRecord, &[[f64; 3]]) -> ControlFlow<()>,
+    ) -> Result<DeformResult, FemError> {
         if targets.len() != self.handles.len() {
             return Err(FemError::LengthMismatch {
                 what: "handle targets",
@@ -144,7 +158,7 @@ impl HandleDeformation {
                     std::array::from_fn(|c| s[c] + t * (e[c] - s[c]))
                 };
             }
-            let r = self.solver.solve(&mut self.x)?;
+            let r = self.solver.solve_with(&mut self.x, &mut on_iteration)?;
             let ok = r.converged();
             results.push(r);
             if !ok {

@@ -2,10 +2,11 @@
 
 mod common;
 
+use std::ops::ControlFlow;
 use std::sync::Arc;
 
-use ecc_fem::NewtonParams;
 use ecc_fem::deform::{HandleDeformation, vertices_where};
+use ecc_fem::{NewtonParams, NewtonStatus};
 use ecc_mesh::read_tet_mesh;
 use ecc_runtime::energies::Arap;
 
@@ -64,4 +65,47 @@ fn arap_bar_with_fixed_and_moved_handles_converges() {
         "bar ARAP: {} iterations, E {:.6e}, |g| {:.2e}, inverted {}, {:.3}s",
         last.iterations, last.energy, last.grad_inf, r.inverted, last.times.total
     );
+}
+
+#[test]
+fn solve_with_reports_every_step_and_stops_on_break() {
+    let mesh = read_tet_mesh(common::data("bar-2523.mesh")).unwrap();
+    let lo = mesh
+        .positions
+        .iter()
+        .map(|p| p[0])
+        .fold(f64::INFINITY, f64::min);
+    let handles = vertices_where(&mesh.positions, |p| p[0] <= lo + 0.25);
+    let targets: Vec<[f64; 3]> = handles
+        .iter()
+        .map(|&h| {
+            let p = mesh.positions[h];
+            [p[0], p[1] + 0.5, p[2]]
+        })
+        .collect();
+    let new = || {
+        HandleDeformation::new(&mesh, Arc::new(Arap), &handles, NewtonParams::default()).unwrap()
+    };
+    // every Newton step of every substep reaches the callback
+    let mut steps = 0;
+    let r = new()
+        .solve_with(&targets, 2, |_, _| {
+            steps += 1;
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+    assert!(r.converged());
+    assert_eq!(steps, r.iterations());
+    // Break after the first step: interrupted, no second substep
+    let mut calls = 0;
+    let r = new()
+        .solve_with(&targets, 2, |_, _| {
+            calls += 1;
+            ControlFlow::Break(())
+        })
+        .unwrap();
+    assert_eq!(calls, 1);
+    assert_eq!(r.substeps.len(), 1);
+    assert_eq!(r.substeps[0].status, NewtonStatus::Interrupted);
+    assert!(!r.converged());
 }
