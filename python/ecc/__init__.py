@@ -172,7 +172,11 @@ def simulate(
     """Run a scene file (TOML, as ``ecc sim``) and return its summary as a dict.
 
     ``out`` overrides the output folder; ``frames`` the number of frames;
-    ``pictures=False`` skips result.png/convergence.png. Raises ``SceneError``.
+    ``pictures=False`` skips result.png/convergence.png. ``progress`` is
+    called after every Newton step with a dict (iter, energy, grad_inf, ...);
+    returning False stops the run early (summary ``status`` "stopped", what
+    was computed is written); Ctrl-C stops it the same way and then raises
+    ``KeyboardInterrupt``. Raises ``SceneError``.
     """
     text = _ecc.simulate(
         _os.fspath(scene),

@@ -3,6 +3,7 @@
 //! files evaluated by the interpreter (the numbers of `ecc eval`), `.psi`
 //! paths are loaded with `ecc_interp::load_psi`.
 
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 use ecc_fem::IterationRecord;
@@ -80,10 +81,14 @@ impl EnergySource for PyEnergies {
 struct PyObserver(Hook);
 
 impl Observer for PyObserver {
-    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) {
-        if self.0.error.is_none() {
-            let _ = self.0.step(rec);
+    /// Ctrl-C, an exception in the callback or a `False` return stops the
+    /// run (the scene ends early with what it computed; the error is raised
+    /// once the run has returned).
+    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) -> ControlFlow<()> {
+        if self.0.error.is_some() {
+            return ControlFlow::Break(());
         }
+        self.0.step(rec)
     }
 }
 

@@ -163,6 +163,16 @@ def test_simulate_a_scene(root, tmp_path):
     assert s["newton_iterations"] > 0 and os.path.exists(tmp_path / "out" / "summary.json")
 
 
+def test_returning_false_stops_a_scene(root, tmp_path):
+    scene = os.path.join(root, "scenes", "camelhead_sd.toml")
+    calls = []
+    s = ecc.simulate(scene, out=str(tmp_path / "out"), pictures=False,
+                     progress=lambda r: calls.append(r) or False)
+    assert len(calls) == 1  # the solve stopped at its first step
+    assert s["status"] == "stopped" and "interrupted" in s["stopped"]
+    assert os.path.exists(tmp_path / "out" / "summary.json")
+
+
 def test_a_bad_scene_raises_scene_error(tmp_path):
     p = tmp_path / "bad.toml"
     p.write_text("[mesh]\nfile = 3\n")

@@ -3,6 +3,8 @@
 //! iteration and gradient norm). It draws nothing when stderr is not a
 //! terminal or when asked to be quiet (`--quiet`).
 
+use std::ops::ControlFlow;
+
 use ecc_fem::IterationRecord;
 use ecc_scene::Observer;
 use ecc_scene::summary::FrameStats;
@@ -44,7 +46,7 @@ impl Observer for Progress {
         }
     }
 
-    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) {
+    fn iteration(&mut self, _frame: usize, rec: &IterationRecord) -> ControlFlow<()> {
         self.iterations += 1;
         self.bar.set_message(format!(
             "| newton {} (total {}) |∇E|∞ {:.2e}",
@@ -52,6 +54,7 @@ impl Observer for Progress {
             self.iterations,
             rec.grad_inf
         ));
+        ControlFlow::Continue(())
     }
 
     fn frame_done(&mut self, stats: &FrameStats) {

@@ -95,3 +95,43 @@ fn outputs_are_complete_atomic_and_listed() {
     assert_eq!(r2.summary.outputs.len(), expected.len());
     assert_eq!(fs::read_dir(&out).unwrap().count(), expected.len());
 }
+
+/// Asks to stop after `after` accepted Newton iterations.
+struct StopAfter {
+    after: usize,
+    seen: usize,
+}
+
+impl ecc_scene::Observer for StopAfter {
+    fn iteration(
+        &mut self,
+        _frame: usize,
+        _rec: &ecc_fem::IterationRecord,
+    ) -> std::ops::ControlFlow<()> {
+        self.seen += 1;
+        if self.seen >= self.after {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    }
+}
+
+#[test]
+fn an_observer_can_stop_the_run_and_what_was_computed_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let f = SceneFile::parse(SCENE, "tiny.toml", dir.path()).unwrap();
+    let opts = RunOptions {
+        out_dir: Some(out.clone()),
+        ..Default::default()
+    };
+    let mut obs = StopAfter { after: 1, seen: 0 };
+    let r = run_scene(&f, &RuntimeEnergies, &opts, &mut obs).unwrap();
+    assert_eq!(obs.seen, 1, "no iteration after the stop");
+    assert_eq!(r.summary.status, ecc_scene::RunStatus::Stopped);
+    let why = r.summary.stopped.as_deref().unwrap_or_default();
+    assert!(why.contains("interrupted"), "{why}");
+    assert!(out.join("summary.json").is_file());
+    assert!(out.join("frame_0000.obj").is_file());
+}

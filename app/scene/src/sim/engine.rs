@@ -183,8 +183,7 @@ impl<const D: usize> Engine<D> {
                 seconds: began,
             });
             began = offset + clock.elapsed().as_secs_f64();
-            obs.iteration(frame, rec);
-            std::ops::ControlFlow::Continue(())
+            obs.iteration(frame, rec)
         });
         self.x = x;
         self.solve_seconds += clock.elapsed().as_secs_f64();
@@ -196,6 +195,9 @@ impl<const D: usize> Engine<D> {
                 return failed_result();
             }
         };
+        if result.status == NewtonStatus::Interrupted {
+            self.stopped = Some(super::observer::INTERRUPTED.into());
+        }
         points.push(SolvePoint {
             grad_inf: result.grad_inf,
             energy: result.energy,

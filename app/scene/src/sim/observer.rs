@@ -3,16 +3,25 @@
 //! draws a progress bar). [`Silent`] ignores everything and [`FrameLines`]
 //! prints one plain line per frame on stderr.
 
+use std::ops::ControlFlow;
+
 use ecc_fem::IterationRecord;
 
 use crate::summary::FrameStats;
+
+/// Why a run stopped when an observer returned `Break` (summary `stopped`).
+pub(crate) const INTERRUPTED: &str = "interrupted (the progress observer asked to stop)";
 
 /// Receives progress events (all methods default to doing nothing).
 pub trait Observer {
     /// The run starts with `frames` frames to compute.
     fn start(&mut self, _name: &str, _frames: usize) {}
-    /// A Newton iteration of `frame` was accepted.
-    fn iteration(&mut self, _frame: usize, _rec: &IterationRecord) {}
+    /// A Newton iteration of `frame` was accepted. `Break` stops the run:
+    /// the solve ends with status `Interrupted`, the run stops early (what was
+    /// computed is written, the summary says why).
+    fn iteration(&mut self, _frame: usize, _rec: &IterationRecord) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
     /// `frame` is done.
     fn frame_done(&mut self, _stats: &FrameStats) {}
     /// A phase message (writing pictures, …).

@@ -6,20 +6,19 @@
 //! start, frame 1 the result; the per-iteration callback feeds the progress
 //! observer and the convergence plot; then the summary and pictures.
 
-use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
 use ecc_fem::param::{ParamOptions, ParamProblem, Parameterization, prepare};
 use ecc_fem::quality::tri_signed_area;
-use ecc_fem::{FemError, NewtonResult, Term};
+use ecc_fem::{FemError, NewtonResult, NewtonStatus, Term};
 use ecc_mesh::{TriMesh, TutteWeights};
 use ecc_runtime::Energy;
 
 use super::build::newton_params;
 use super::context::{Context, FinalState, RunReport, energy_stats, finish, term_stats};
 use super::engine::status_name;
-use super::observer::Observer;
+use super::observer::{INTERRUPTED, Observer};
 use crate::counters::Counters;
 use crate::error::SceneError;
 use crate::output::OutputDir;
@@ -128,8 +127,7 @@ fn solve(
                 seconds: began,
             });
             began = clock.elapsed().as_secs_f64();
-            obs.iteration(1, rec);
-            ControlFlow::Continue(())
+            obs.iteration(1, rec)
         })
         .map_err(|e| SceneError::setup("the parameterisation", e))?;
     let r = &p.result;
@@ -215,6 +213,7 @@ pub(crate) fn run_parameterization(
     write(out, "frame_0001", &p.uv)?;
 
     let r = &p.result;
+    let stopped = (r.status == NewtonStatus::Interrupted).then(|| INTERRUPTED.to_string());
     let mut warnings = ctx.loaded.warnings.clone();
     if !r.converged() {
         warnings.push(format!("the solve stopped with {}", log.status));
@@ -233,8 +232,8 @@ pub(crate) fn run_parameterization(
         converged_frames: usize::from(r.converged()),
         frames: vec![f0, f1],
         solves: vec![log],
-        stopped: None,
-        status: RunStatus::of(false, usize::from(r.converged()), 1),
+        status: RunStatus::of(stopped.is_some(), usize::from(r.converged()), 1),
+        stopped,
         final_energy: r.energy,
         setup_seconds,
         newton: r.times,
