@@ -186,12 +186,14 @@ def _scene_job(job: Job, tmp: str) -> Dict[str, Any]:
         json.dump(summary, fh, indent=1)
     frames = summary.get("frames", [])
     last = frames[-1] if frames else {}
-    stopped = summary.get("stopped")
+    # the run's own verdict: converged | unconverged | stopped (as ecc sim)
+    status = summary.get("status", "converged")
+    error = summary.get("stopped") or ("" if status == "converged" else "some frames did not converge")
     return {
-        "status": "ok" if not stopped else "stopped",
+        "status": "ok" if status == "converged" else status,
         "iterations": summary.get("newton_iterations", ""),
-        "final_energy": last.get("energy", ""),
-        "error": stopped or "",
+        "final_energy": summary.get("final_energy", last.get("energy", "")),
+        "error": error,
     }
 
 

@@ -78,6 +78,42 @@ def test_a_folder_of_meshes_and_the_table(client, tmp_path):
         assert os.stat(os.path.join(out, "jobs", j.name, "result.json")).st_mtime_ns == stamp[j.name]
 
 
+TINY_SCENE = """
+name = "tiny"
+frames = 2
+[mesh]
+generate = "bar"
+resolution = 1
+[energy]
+name = "arap"
+[[effects.handles]]
+plane = { point = [-1.9, 0, 0], normal = [-1, 0, 0] }
+[[effects.handles]]
+plane = { point = [1.9, 0, 0], normal = [1, 0, 0] }
+keys = [ { frame = 2, rotate = [60, 0, 0] } ]
+"""
+
+
+def test_scene_jobs(client, tmp_path):
+    scenes, out = tmp_path / "scenes", str(tmp_path / "out")
+    scenes.mkdir()
+    (scenes / "tiny.toml").write_text(TINY_SCENE)
+    # a tolerance no solve reaches in 2 iterations: the run ends unconverged
+    (scenes / "tight.toml").write_text(TINY_SCENE + "[solver]\nmax_iters = 2\ntol = 1e-300\n")
+    (scenes / "broken.toml").write_text("[mesh]\nfile = 3\n")
+    jobs = batch.scene_jobs([str(scenes)], pictures=False)
+    assert len(jobs) == 3
+    batch.run_batch(jobs, out, client=client)
+    by = {os.path.basename(r["input"]): r for r in batch.read_table(os.path.join(out, "results.csv"))}
+    ok = by["tiny.toml"]
+    assert ok["status"] == "ok" and int(ok["iterations"]) > 0 and float(ok["final_energy"]) > 0
+    folder = os.path.join(out, "jobs", ok["job"])
+    assert os.path.exists(os.path.join(folder, "summary.json"))
+    assert os.path.exists(os.path.join(folder, "out", "frame_0002.obj"))
+    assert by["tight.toml"]["status"] == "unconverged" and by["tight.toml"]["error"]
+    assert by["broken.toml"]["status"] == "failed" and "SceneError" in by["broken.toml"]["error"]
+
+
 def test_a_killed_worker_loses_no_job(client, tmp_path):
     meshes, out = str(tmp_path / "meshes"), str(tmp_path / "out")
     write_meshes(meshes, good=24, n=24)
