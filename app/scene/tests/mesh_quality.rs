@@ -6,51 +6,10 @@
 
 use ecc_scene::{RunOptions, RuntimeEnergies, SceneError, SceneFile, Silent, run_scene};
 
-/// `disk_tri(rings, 1)` with a tiny ear on its boundary: boundary edge
-/// (a, b) of triangle T is split at m = a + ε(b − a) (T becomes (a, m, c)
-/// and (m, b, c)) and the ear (a, p, m) is added outside, p at height `h`
-/// over the middle of am. With |am| ≈ 7.7e-4 and h = 1.4e-8 the ear has
-/// area ≈ 5.3e-12 (below 1e-12 × the bounding-box diagonal² ≈ 8e-12, the
-/// old whole-mesh tolerance) and quality area ÷ longest edge² ≈ 9e-6: a
-/// genuine sliver. `h = 0` puts p on am: a degenerate ear. Returns
-/// (positions, triangles, the ear's id).
+/// The ear fixture ([`ecc_mesh::disk_with_ear`]) as (positions, triangles,
+/// the ear's id).
 fn disk_with_ear(h: f64) -> (Vec<[f64; 3]>, Vec<[usize; 3]>, usize) {
-    let mut m = ecc_mesh::disk_tri(6, 1.0);
-    let lp = ecc_mesh::boundary_loops(&m.triangles).unwrap();
-    let (a, b) = (lp[0][0], lp[0][1]);
-    let t = m
-        .triangles
-        .iter()
-        .position(|t| t.contains(&a) && t.contains(&b))
-        .unwrap();
-    let (pa, pb) = (m.positions[a], m.positions[b]);
-    let ab = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
-    let eps = 7.7e-4 / ab;
-    let pm = [
-        pa[0] + eps * (pb[0] - pa[0]),
-        pa[1] + eps * (pb[1] - pa[1]),
-        0.0,
-    ];
-    let mid = [(pa[0] + pm[0]) / 2.0, (pa[1] + pm[1]) / 2.0];
-    let r = (mid[0] * mid[0] + mid[1] * mid[1]).sqrt();
-    let pp = [mid[0] + h * mid[0] / r, mid[1] + h * mid[1] / r, 0.0];
-    let (im, ip) = (m.positions.len(), m.positions.len() + 1);
-    m.positions.push(pm);
-    m.positions.push(pp);
-    let tri = m.triangles[t];
-    m.triangles[t] = tri.map(|v| if v == b { im } else { v });
-    m.triangles.push(tri.map(|v| if v == a { im } else { v }));
-    let signed = |t: [usize; 3]| {
-        let (p, q, s) = (m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-        (q[0] - p[0]) * (s[1] - p[1]) - (q[1] - p[1]) * (s[0] - p[0])
-    };
-    let ear = if signed([a, ip, im]) >= 0.0 {
-        [a, ip, im]
-    } else {
-        [a, im, ip]
-    };
-    m.triangles.push(ear);
-    let id = m.triangles.len() - 1;
+    let (m, id) = ecc_mesh::disk_with_ear(h);
     (m.positions, m.triangles, id)
 }
 

@@ -5,6 +5,8 @@
 //! [`crate::validate_tet`] with every requirement switched on.
 //!
 //! A zero resolution gives an empty mesh (no vertices, no elements).
+//! The one exception to "passes validation" is [`disk_with_ear`], a fixture
+//! for the validation rule itself (a sliver, or a degenerate triangle).
 
 use std::f64::consts::TAU;
 
@@ -165,6 +167,50 @@ pub fn bar_tet(resolution: usize) -> TetMesh {
         p[2] -= 0.5;
     }
     m
+}
+
+/// `disk_tri(6, 1)` with a tiny ear on its boundary, the fixture of the
+/// per-element validation rule: boundary edge (a, b) of triangle T is split
+/// at m = a + ε(b − a) (T becomes (a, m, c) and (m, b, c)) and the ear
+/// (a, p, m) is added outside, p at height `h` over the middle of am. With
+/// |am| ≈ 7.7e-4 and h = 1.4e-8 the ear has area ≈ 5.3e-12 (below
+/// 1e-12 × the bounding-box diagonal² ≈ 8e-12, a whole-mesh tolerance) and
+/// quality area ÷ longest edge² ≈ 9e-6: a genuine sliver. `h = 0` puts p on
+/// am: a degenerate ear. Returns the mesh and the ear's triangle id.
+pub fn disk_with_ear(h: f64) -> (TriMesh, usize) {
+    let mut m = disk_tri(6, 1.0);
+    let lp = crate::boundary_loops(&m.triangles).expect("a disk has one boundary loop");
+    let (a, b) = (lp[0][0], lp[0][1]);
+    let t = m
+        .triangles
+        .iter()
+        .position(|t| t.contains(&a) && t.contains(&b))
+        .expect("a boundary edge has a triangle");
+    let (pa, pb) = (m.positions[a], m.positions[b]);
+    let ab = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
+    let eps = 7.7e-4 / ab;
+    let pm = [
+        pa[0] + eps * (pb[0] - pa[0]),
+        pa[1] + eps * (pb[1] - pa[1]),
+        0.0,
+    ];
+    let mid = [(pa[0] + pm[0]) / 2.0, (pa[1] + pm[1]) / 2.0];
+    let r = (mid[0] * mid[0] + mid[1] * mid[1]).sqrt();
+    let pp = [mid[0] + h * mid[0] / r, mid[1] + h * mid[1] / r, 0.0];
+    let (im, ip) = (m.positions.len(), m.positions.len() + 1);
+    m.positions.push(pm);
+    m.positions.push(pp);
+    let tri = m.triangles[t];
+    m.triangles[t] = tri.map(|v| if v == b { im } else { v });
+    m.triangles.push(tri.map(|v| if v == a { im } else { v }));
+    let ear = if crate::geometry::signed_area_2d(pa, pp, pm) >= 0.0 {
+        [a, ip, im]
+    } else {
+        [a, im, ip]
+    };
+    m.triangles.push(ear);
+    let id = m.triangles.len() - 1;
+    (m, id)
 }
 
 #[cfg(test)]

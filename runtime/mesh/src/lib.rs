@@ -100,7 +100,8 @@ pub mod validate;
 pub use data::{data_dir, data_file};
 pub use error::{MeshError, ParseError, TutteError, ValidationError};
 pub use generate::{
-    bar_tet, box_tet, box_tet_with_at_least, disk_tri, grid_tri, grid_tri_with_at_least,
+    bar_tet, box_tet, box_tet_with_at_least, disk_tri, disk_with_ear, grid_tri,
+    grid_tri_with_at_least,
 };
 pub use io::{
     MeshFormat, PointData, parse_gmsh, parse_medit, parse_mesh_bytes, parse_obj, parse_off,
