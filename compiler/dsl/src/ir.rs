@@ -104,6 +104,66 @@ pub struct DimIr {
     /// Distinct denominators and log arguments found in the spectral
     /// expressions (σi+σj, I3, σi, …), for reports.
     pub singularities: Vec<Id>,
+    /// The domain of Ψ *as written*, recorded while lowering before any
+    /// simplification (`exp(log(I3))` is `I3` only where I3 > 0): Ψ = +∞
+    /// wherever a condition fails. Deduplicated; conditions the CAS proves
+    /// always true (`exp(x) > 0`, `I2 + 1 > 0`) are not listed.
+    pub domain: Vec<DomainGuard>,
+}
+
+impl DimIr {
+    /// The domain conditions every evaluator must test (those Ψ's own
+    /// evaluation does not already turn into a non-finite value).
+    pub fn active_guards(&self) -> impl Iterator<Item = &DomainGuard> {
+        self.domain.iter().filter(|g| !g.enforced_by_psi)
+    }
+}
+
+/// What a written operation needs of its argument.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum DomainCond {
+    /// `x > 0`: `log(x)`, `x^e` with a non-constant exponent, `x^(p/q)` with
+    /// q even and p < 0.
+    Positive,
+    /// `x ≥ 0`: `sqrt(x)`, `x^(p/q)` with q even and p > 0.
+    NonNegative,
+    /// `x ≠ 0`: a division by x, `x^(p/q)` with p < 0 and q odd.
+    NonZero,
+}
+
+impl DomainCond {
+    /// Whether `x` satisfies the condition (NaN never does).
+    #[inline]
+    pub fn holds(self, x: f64) -> bool {
+        match self {
+            DomainCond::Positive => x > 0.0,
+            DomainCond::NonNegative => x >= 0.0,
+            DomainCond::NonZero => x.abs() > 0.0,
+        }
+    }
+
+    /// The relation in mathematical notation: `>`, `≥` or `≠` (against 0).
+    pub fn relation(self) -> &'static str {
+        match self {
+            DomainCond::Positive => ">",
+            DomainCond::NonNegative => "≥",
+            DomainCond::NonZero => "≠",
+        }
+    }
+}
+
+/// One condition of Ψ's domain: `cond` holds for the value of `arg`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DomainGuard {
+    /// The argument (an expression in I's, σ's and parameters).
+    pub arg: Id,
+    /// What it must satisfy.
+    pub cond: DomainCond,
+    /// Proved redundant for evaluators: the node that needs the condition
+    /// (`log(arg)`, `arg^e`) is still part of Ψ, so Ψ evaluates to NaN or
+    /// ±∞ (reported +∞) wherever it fails (a log barrier's `log(J)`).
+    /// Such conditions are listed in reports but not re-tested.
+    pub enforced_by_psi: bool,
 }
 
 /// The stretch-space eigen data that generated code evaluates.

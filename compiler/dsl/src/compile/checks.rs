@@ -5,6 +5,7 @@ use num_traits::Zero;
 
 use crate::cas::{Env, Graph, Id, Node, Sym, Tape};
 use crate::diag::Error;
+use crate::ir::DomainGuard;
 use crate::poly::{Converter, Proof};
 use crate::span::Span;
 
@@ -152,8 +153,18 @@ pub fn sign_symmetric(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8) -
 /// σ = (b, t) for t = 10⁻⁴, 10⁻⁸, …, 10⁻³² (b two fixed positive
 /// stretch sets, parameters at their defaults) must increase strictly at
 /// every step (or reach +∞ and stay there) — log growth gives ≈ 9.2 per
-/// step, a power far more.
-pub fn barrier(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8, params: &[f64]) -> bool {
+/// step, a power far more. Ψ is evaluated as written: +∞ where a
+/// condition of its `domain` fails (`log(I3) - log(I3)` is 0 for I3 > 0,
+/// not a barrier; the domain alone never makes one, as a candidate is
+/// required).
+pub fn barrier(
+    g: &mut Graph,
+    conv: &mut Converter,
+    psi_s: Id,
+    dim: u8,
+    params: &[f64],
+    domain: &[DomainGuard],
+) -> bool {
     let mut args: Vec<Id> = Vec::new();
     for id in g.reachable(&[psi_s]) {
         match g.get(id) {
@@ -181,22 +192,32 @@ pub fn barrier(g: &mut Graph, conv: &mut Converter, psi_s: Id, dim: u8, params: 
             }
         }
     }
-    candidate && grows_at_zero_det(g, psi_s, dim, params)
+    candidate && grows_at_zero_det(g, psi_s, dim, params, domain)
 }
 
 /// Ψ grows without bound as the last σ → 0⁺: strictly increasing (or +∞
 /// from some step on) with increments that do not die out (the last one at
 /// least half the first: constant for a log, growing for a power; a bounded
 /// approach such as t·log t has vanishing increments).
-fn grows_at_zero_det(g: &Graph, psi_s: Id, dim: u8, params: &[f64]) -> bool {
-    let tape = Tape::new(g, &[psi_s]);
+fn grows_at_zero_det(
+    g: &Graph,
+    psi_s: Id,
+    dim: u8,
+    params: &[f64],
+    domain: &[DomainGuard],
+) -> bool {
+    let mut roots = vec![psi_s];
+    roots.extend(domain.iter().map(|d| d.arg));
+    let tape = Tape::new(g, &roots);
     let bases: [[f64; 2]; 2] = [[1.3, 0.8], [0.9, 1.1]];
     bases.iter().all(|b| {
         let v: Vec<f64> = (1..=8)
             .map(|n| {
                 let mut s = vec![b[0], b[1], 0.0];
                 s[dim as usize - 1] = 10f64.powi(-4 * n);
-                tape.eval(&Env::new(dim, &s, params))[0]
+                let out = tape.eval(&Env::new(dim, &s, params));
+                let inside = domain.iter().zip(&out[1..]).all(|(d, &x)| d.cond.holds(x));
+                if inside { out[0] } else { f64::INFINITY }
             })
             .collect();
         let increasing = v

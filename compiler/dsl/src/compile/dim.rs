@@ -2,7 +2,7 @@
 
 use crate::cas::{Graph, Id, Sym};
 use crate::diag::Error;
-use crate::ir::{DimIr, InvariantDerivs, PairIr, PairKind, Path, ScaleIr, SpectralIr};
+use crate::ir::{DimIr, DomainGuard, InvariantDerivs, PairIr, PairKind, Path, ScaleIr, SpectralIr};
 use crate::poly::{Converter, Proof};
 use crate::span::Span;
 
@@ -25,6 +25,8 @@ pub struct DimInput<'a> {
     pub dim: u8,
     /// Parameter defaults (for numeric checks).
     pub params: &'a [f64],
+    /// The domain of Ψ as written (ids in the lowering graph).
+    pub domain: &'a [DomainGuard],
     /// Span of psi's definition (for errors).
     pub psi_span: Span,
     /// The source never mentions s3.
@@ -50,6 +52,7 @@ struct Parts {
     decoupled: bool,
     twist: Vec<(PairIr, PairKind)>,
     flip: Vec<(PairIr, PairKind)>,
+    domain: Vec<DomainGuard>,
 }
 
 /// Build the IR of Ψ = `psi` (an expression in I's, σ's and params of `g`).
@@ -98,6 +101,7 @@ pub fn build_dim(mut g: Graph, psi: Id, input: &DimInput) -> Result<DimIr, Error
         decoupled,
         twist,
         flip,
+        domain: input.domain.to_vec(),
     };
     Ok(finish(&g, dim, parts, flags))
 }
@@ -133,7 +137,7 @@ fn analyse(
         isotropy_numeric_only,
         rational: conv.rational(g, psi_s).is_some(),
         sign_symmetric: checks::sign_symmetric(g, conv, psi_s, dim),
-        barrier: checks::barrier(g, conv, psi_s, dim, input.params),
+        barrier: checks::barrier(g, conv, psi_s, dim, input.params, input.domain),
         svd_free: !g.may_depend(psi, Sym::I1) && !g.uses_sigma(psi),
     })
 }
@@ -202,6 +206,7 @@ fn finish(g: &Graph, dim: u8, p: Parts, flags: Flags) -> DimIr {
     }
     let singular = checks::singularities(g, &roots);
     roots.extend(&singular);
+    roots.extend(p.domain.iter().map(|d| d.arg));
     let (graph, new) = g.extract(&roots);
     let mut it = new.into_iter();
     let mut next = || it.next().unwrap_or(Id(0));
@@ -223,6 +228,11 @@ fn finish(g: &Graph, dim: u8, p: Parts, flags: Flags) -> DimIr {
     let twist: Vec<PairIr> = p.twist.iter().map(&mut remap_pair).collect();
     let flip: Vec<PairIr> = p.flip.iter().map(&mut remap_pair).collect();
     let singularities: Vec<Id> = singular.iter().map(|_| next()).collect();
+    let domain: Vec<DomainGuard> = p
+        .domain
+        .iter()
+        .map(|d| DomainGuard { arg: next(), ..*d })
+        .collect();
     let scale = if p.decoupled {
         ScaleIr::Diagonal((0..n).map(|i| a[i][i]).collect())
     } else {
@@ -250,6 +260,7 @@ fn finish(g: &Graph, dim: u8, p: Parts, flags: Flags) -> DimIr {
         decoupled: p.decoupled,
         isotropy_numeric_only: flags.isotropy_numeric_only,
         singularities,
+        domain,
     }
 }
 

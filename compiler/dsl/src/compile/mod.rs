@@ -4,6 +4,7 @@ mod checks;
 mod cost;
 mod derivs;
 mod dim;
+mod domain;
 
 pub use checks::Rng;
 pub use cost::{cost, cost_many};
@@ -67,11 +68,13 @@ fn with_lowering_errors(prog: &sema::Program, mut errors: Vec<Error>, dims: &[u8
 }
 
 fn dim_of(prog: &sema::Program, dim: u8) -> Result<DimIr, Vec<Error>> {
-    let (g, psi) = lower::lower_program(prog, dim)?;
+    let (g, psi, mut guards) = lower::lower_with_domain(prog, dim)?;
+    domain::mark_enforced(&g, psi, &mut guards);
     let params: Vec<f64> = prog.params.iter().map(|p| p.default).collect();
     let input = dim::DimInput {
         dim,
         params: &params,
+        domain: &guards,
         psi_span: prog.psi_span,
         no_s3: !prog.stretch_uses.iter().any(|(k, _)| *k == 2),
     };

@@ -6,33 +6,69 @@
 //! III_C, but it is II_C: it equals Σσ⁴, checked in the tests);
 //! IIIC = I3²; J = I3. `d` folds to the dimension. Divisions by, negative
 //! powers of, and logs of something that folds to exactly 0 are errors.
+//! The domain conditions of what is written (`log(x)` needs x > 0, …) are
+//! recorded before the CAS simplifies them away ([`super::domain`]).
 
 use num_rational::BigRational;
 use num_traits::Signed;
 
 use super::ast::BinOp;
+use super::domain;
 use super::resolved::{Func, Program, RExpr, Var, mentions_d};
 use crate::cas::{Graph, Id, Sym};
 use crate::diag::Error;
+use crate::ir::DomainGuard;
 
 /// Lower `prog` for dimension `dim`: the graph and Ψ's id, or the errors
 /// found (empty when Ψ depends on something already reported as an error).
 pub fn lower_program(prog: &Program, dim: u8) -> Result<(Graph, Id), Vec<Error>> {
+    lower_with_domain(prog, dim).map(|(g, psi, _)| (g, psi))
+}
+
+/// [`lower_program`] plus the domain of Ψ as written (before any
+/// simplification; see [`super::domain`]): the conditions of Ψ's own
+/// expression and of every `let` it uses.
+pub fn lower_with_domain(
+    prog: &Program,
+    dim: u8,
+) -> Result<(Graph, Id, Vec<DomainGuard>), Vec<Error>> {
     let names = prog.params.iter().map(|p| p.name.clone()).collect();
     let mut g = Graph::new(names);
     let mut errors = Vec::new();
     let lets_d: Vec<bool> = prog.lets.iter().map(|l| l.mentions_d).collect();
     let mut lets: Vec<Option<Id>> = Vec::with_capacity(prog.lets.len());
+    let mut let_guards: Vec<Vec<DomainGuard>> = Vec::with_capacity(prog.lets.len());
     for l in &prog.lets {
-        let v = lower_expr(&mut g, &l.expr, dim, &lets, &lets_d, &mut errors);
+        let mut cx = Cx {
+            g: &mut g,
+            dim,
+            lets: &lets,
+            lets_d: &lets_d,
+            let_guards: &let_guards,
+            errors: &mut errors,
+            guards: Vec::new(),
+        };
+        let v = cx.expr(&l.expr);
+        let guards = cx.guards;
         lets.push(v);
+        let_guards.push(guards);
     }
-    let psi = lower_expr(&mut g, &prog.psi, dim, &lets, &lets_d, &mut errors);
+    let mut cx = Cx {
+        g: &mut g,
+        dim,
+        lets: &lets,
+        lets_d: &lets_d,
+        let_guards: &let_guards,
+        errors: &mut errors,
+        guards: Vec::new(),
+    };
+    let psi = cx.expr(&prog.psi);
+    let guards = cx.guards;
     if let Some(p) = psi {
         errors.extend(constants_beyond_f64(&g, p, prog.psi_span));
     }
     match psi {
-        Some(p) if errors.is_empty() => Ok((g, p)),
+        Some(p) if errors.is_empty() => Ok((g, p, guards)),
         // `errors` is empty only when psi was poisoned by an earlier
         // (already reported) error.
         _ => Err(errors),
@@ -72,115 +108,155 @@ pub fn lower_expr(
     lets_d: &[bool],
     errors: &mut Vec<Error>,
 ) -> Option<Id> {
-    let tag = |x: &RExpr| mentions_d(x, lets_d).then_some(dim);
-    Some(match e {
-        RExpr::Num(r) => g.num(r.clone()),
-        RExpr::Var(v) => var(g, *v, dim)?,
-        RExpr::Param(k) => g.sym(Sym::Param(*k)),
-        RExpr::Let(k) => (*lets.get(*k)?)?,
-        RExpr::Neg(x) => {
-            let v = lower_expr(g, x, dim, lets, lets_d, errors)?;
-            g.neg(v)
-        }
-        RExpr::Chain(first, rest)
-            if rest
-                .iter()
-                .all(|(op, ..)| matches!(op, BinOp::Add | BinOp::Sub)) =>
-        {
-            lower_sum(g, first, rest, dim, lets, lets_d, errors)?
-        }
-        RExpr::Chain(first, rest) => {
-            let mut acc = lower_expr(g, first, dim, lets, lets_d, errors);
-            for (op, x, span) in rest {
-                let v = lower_expr(g, x, dim, lets, lets_d, errors);
-                let (Some(a), Some(b)) = (acc, v) else {
-                    acc = None;
-                    continue;
-                };
-                acc = Some(match op {
-                    BinOp::Add => g.add2(a, b),
-                    BinOp::Sub => g.sub(a, b),
-                    BinOp::Mul => g.mul2(a, b),
-                    BinOp::Div | BinOp::Pow => {
-                        if g.is_int(b, 0) {
-                            errors.push(Error::DivisionByZero {
-                                span: *span,
-                                dim: tag(x),
-                            });
-                            acc = None;
-                            continue;
-                        }
-                        g.div(a, b)
-                    }
-                });
-            }
-            acc?
-        }
-        RExpr::Pow(b, x, span) => {
-            let bv = lower_expr(g, b, dim, lets, lets_d, errors);
-            let xv = lower_expr(g, x, dim, lets, lets_d, errors);
-            let (bv, xv) = (bv?, xv?);
-            if g.is_int(bv, 0) && g.as_num(xv).is_some_and(|r| r.is_negative()) {
-                let dt = (mentions_d(b, lets_d) || mentions_d(x, lets_d)).then_some(dim);
-                errors.push(Error::DivisionByZero {
-                    span: *span,
-                    dim: dt,
-                });
-                return None;
-            }
-            g.pow(bv, xv)
-        }
-        RExpr::Call(f, x, span) => {
-            let v = lower_expr(g, x, dim, lets, lets_d, errors)?;
-            match f {
-                Func::Sqrt => g.sqrt(v),
-                Func::Exp => g.exp(v),
-                Func::Log | Func::Pow => {
-                    if g.is_int(v, 0) {
-                        errors.push(Error::LogOfZero {
-                            span: *span,
-                            dim: tag(x),
-                        });
-                        return None;
-                    }
-                    g.log(v)
-                }
-            }
-        }
-        RExpr::Poison => return None,
-    })
+    let no_guards: Vec<Vec<DomainGuard>> = vec![Vec::new(); lets.len()];
+    let mut cx = Cx {
+        g,
+        dim,
+        lets,
+        lets_d,
+        let_guards: &no_guards,
+        errors,
+        guards: Vec::new(),
+    };
+    cx.expr(e)
 }
 
-/// A run of `+`/`-` as one canonical sum (adding term by term would
-/// re-collect the growing sum at every step: quadratic in its length). The
-/// result is the same node: sums are flattened and like terms collected.
-fn lower_sum(
-    g: &mut Graph,
-    first: &RExpr,
-    rest: &[(BinOp, RExpr, crate::span::Span)],
+/// The state of lowering one expression: the graph, the `let`s above it
+/// (their ids, whether they mention `d`, their domain conditions), the
+/// errors found and the domain conditions of what was written so far.
+struct Cx<'a> {
+    g: &'a mut Graph,
     dim: u8,
-    lets: &[Option<Id>],
-    lets_d: &[bool],
-    errors: &mut Vec<Error>,
-) -> Option<Id> {
-    let mut terms = Vec::with_capacity(rest.len() + 1);
-    let mut ok = match lower_expr(g, first, dim, lets, lets_d, errors) {
-        Some(a) => {
-            terms.push(a);
-            true
-        }
-        None => false,
-    };
-    for (op, x, _) in rest {
-        match lower_expr(g, x, dim, lets, lets_d, errors) {
-            Some(b) if ok => terms.push(match op {
-                BinOp::Sub => g.neg(b),
-                _ => b,
-            }),
-            _ => ok = false,
-        }
+    lets: &'a [Option<Id>],
+    lets_d: &'a [bool],
+    let_guards: &'a [Vec<DomainGuard>],
+    errors: &'a mut Vec<Error>,
+    guards: Vec<DomainGuard>,
+}
+
+impl Cx<'_> {
+    fn tag(&self, x: &RExpr) -> Option<u8> {
+        mentions_d(x, self.lets_d).then_some(self.dim)
     }
-    ok.then(|| g.sum(&terms))
+
+    /// Lower `e`, recording the domain condition of every restricting
+    /// operation on its operands as written.
+    fn expr(&mut self, e: &RExpr) -> Option<Id> {
+        Some(match e {
+            RExpr::Num(r) => self.g.num(r.clone()),
+            RExpr::Var(v) => var(self.g, *v, self.dim)?,
+            RExpr::Param(k) => self.g.sym(Sym::Param(*k)),
+            RExpr::Let(k) => {
+                let id = (*self.lets.get(*k)?)?;
+                if let Some(more) = self.let_guards.get(*k) {
+                    domain::extend(self.g, &mut self.guards, more);
+                }
+                id
+            }
+            RExpr::Neg(x) => {
+                let v = self.expr(x)?;
+                self.g.neg(v)
+            }
+            RExpr::Chain(first, rest)
+                if rest
+                    .iter()
+                    .all(|(op, ..)| matches!(op, BinOp::Add | BinOp::Sub)) =>
+            {
+                self.sum(first, rest)?
+            }
+            RExpr::Chain(first, rest) => self.chain(first, rest)?,
+            RExpr::Pow(b, x, span) => {
+                let bv = self.expr(b);
+                let xv = self.expr(x);
+                let (bv, xv) = (bv?, xv?);
+                if self.g.is_int(bv, 0) && self.g.as_num(xv).is_some_and(|r| r.is_negative()) {
+                    let dt = (mentions_d(b, self.lets_d) || mentions_d(x, self.lets_d))
+                        .then_some(self.dim);
+                    self.errors.push(Error::DivisionByZero {
+                        span: *span,
+                        dim: dt,
+                    });
+                    return None;
+                }
+                domain::pow(self.g, &mut self.guards, bv, xv);
+                self.g.pow(bv, xv)
+            }
+            RExpr::Call(f, x, span) => {
+                let v = self.expr(x)?;
+                match f {
+                    Func::Sqrt => {
+                        let half = self.g.num(half());
+                        domain::pow(self.g, &mut self.guards, v, half);
+                        self.g.sqrt(v)
+                    }
+                    Func::Exp => self.g.exp(v),
+                    Func::Log | Func::Pow => {
+                        if self.g.is_int(v, 0) {
+                            let dim = self.tag(x);
+                            self.errors.push(Error::LogOfZero { span: *span, dim });
+                            return None;
+                        }
+                        domain::log(self.g, &mut self.guards, v);
+                        self.g.log(v)
+                    }
+                }
+            }
+            RExpr::Poison => return None,
+        })
+    }
+
+    /// A chain with `*` or `/` (left to right).
+    fn chain(&mut self, first: &RExpr, rest: &[(BinOp, RExpr, crate::span::Span)]) -> Option<Id> {
+        let mut acc = self.expr(first);
+        for (op, x, span) in rest {
+            let v = self.expr(x);
+            let (Some(a), Some(b)) = (acc, v) else {
+                acc = None;
+                continue;
+            };
+            acc = Some(match op {
+                BinOp::Add => self.g.add2(a, b),
+                BinOp::Sub => self.g.sub(a, b),
+                BinOp::Mul => self.g.mul2(a, b),
+                BinOp::Div | BinOp::Pow => {
+                    if self.g.is_int(b, 0) {
+                        let dim = self.tag(x);
+                        self.errors.push(Error::DivisionByZero { span: *span, dim });
+                        acc = None;
+                        continue;
+                    }
+                    domain::nonzero(self.g, &mut self.guards, b);
+                    self.g.div(a, b)
+                }
+            });
+        }
+        acc
+    }
+
+    /// A run of `+`/`-` as one canonical sum (adding term by term would
+    /// re-collect the growing sum at every step: quadratic in its length).
+    /// The result is the same node: sums are flattened and like terms
+    /// collected.
+    fn sum(&mut self, first: &RExpr, rest: &[(BinOp, RExpr, crate::span::Span)]) -> Option<Id> {
+        let mut terms = Vec::with_capacity(rest.len() + 1);
+        let mut ok = match self.expr(first) {
+            Some(a) => {
+                terms.push(a);
+                true
+            }
+            None => false,
+        };
+        for (op, x, _) in rest {
+            match self.expr(x) {
+                Some(b) if ok => terms.push(match op {
+                    BinOp::Sub => self.g.neg(b),
+                    _ => b,
+                }),
+                _ => ok = false,
+            }
+        }
+        ok.then(|| self.g.sum(&terms))
+    }
 }
 
 fn half() -> BigRational {

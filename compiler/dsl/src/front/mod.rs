@@ -1,6 +1,7 @@
 //! The front end: parsing, name resolution and lowering into the CAS.
 
 pub mod ast;
+pub mod domain;
 pub mod lower;
 pub mod parse;
 pub mod resolved;
