@@ -14,10 +14,25 @@
 //! [`crate::Energy`], the fibre part this trait, and a solver adds the two
 //! (each projected to PSD on its own, as HOBAK does).
 //!
+//! The runtime side ([`frame`], [`point`], [`fibre_f`],
+//! [`fibre_element_eval`]) lifts ψ's partials to F-space and element
+//! gradients and PSD-filtered Hessians: a closed form when ψ has no I4
+//! derivative (eqs. P3–P5 of [`point`]), else an analytic raw Hessian and a
+//! d² × d² numeric projection.
+//!
 //! This file is the contract between the compiler's back ends (generated
 //! code, the interpreter) and the runtime's fibre eigensystems.
 
 use crate::energy::ParamError;
+
+mod dim;
+mod element;
+pub mod frame;
+pub mod point;
+
+pub use dim::{FibreDim, FibrePoint, fibre_element_eval, fibre_element_psi, fibre_f, unit_fibre};
+pub use frame::{invariant4, invariant5};
+pub use point::{FibrePath, i5_eigenvalues};
 
 /// ψ and its partial derivatives with respect to (I4, I5) at one point.
 ///

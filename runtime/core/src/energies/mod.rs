@@ -8,13 +8,16 @@
 //! |---|---|---|
 //! | [`Arap`] | Σ(σ_i − 1)² = I2 − 2I1 + d | Smith et al. 2019 eqs. 28–30; twist pole at σ_i + σ_j = 0 |
 //! | [`SymmetricDirichlet`] | ½ Σ(σ_i² + σ_i⁻²) = ½(‖F‖² + ‖F⁻¹‖²) | eqs. 31–35; barrier, +∞ at det F = 0 |
+//! | [`FibreArap`], [`FibreStvk`], [`FibreFung`] | fibre energies ψ(I4, I5) | see [`crate::fibre`]; [`fibre_by_name`] |
 //! | [`StableNeoHookean`] | μ/2 (I2 − d) + λ/2 (J − α)² − μ/2 log(I2 + 1) | Smith et al. 2018, α = 1 + μ/λ − μ/((d+1)λ) |
 
 mod arap;
+mod fibre;
 mod sd;
 mod snh;
 
 pub use arap::Arap;
+pub use fibre::{FIBRE_NAMES, FibreArap, FibreFung, FibreStvk, fibre_by_name};
 pub use sd::SymmetricDirichlet;
 pub use snh::StableNeoHookean;
 

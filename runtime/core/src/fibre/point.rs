@@ -1,0 +1,176 @@
+//! ψ(I4, I5), vec(∂ψ/∂F) and the (filtered) ∂²ψ/∂f² at one F.
+//!
+//! With g4 = vec(∂I4/∂F), g5 = vec(∂I5/∂F) and H4, H5 their Hessians
+//! ([`super::frame`], eqs. F3–F5), the chain rule gives
+//!
+//!   ∂ψ/∂F = ψ4 g4 + ψ5 g5,                                                 (P1)
+//!   ∂²ψ/∂f² = ψ5 H5 + ψ4 H4 + [g4 g5] [[ψ44, ψ45], [ψ45, ψ55]] [g4 g5]ᵀ.  (P2)
+//!
+//! **Closed form, ψ without I4 terms** ([`FibrePath::ClosedI5`]; every
+//! energy of I5 alone, and anisotropic ARAP, whose sign(I4) is locally
+//! constant): g5 = 2‖Fa‖ vec(n aᵀ) with n = F a/‖F a‖, so P2 is
+//! 2ψ5 (a aᵀ ⊗ I) + 4ψ55 I5 vec(n aᵀ)vec(n aᵀ)ᵀ with eigenpairs
+//!
+//!   λ_along = 2ψ5 + 4ψ55 I5 on vec(n aᵀ),                                 (P3)
+//!   λ_across = 2ψ5 on vec(q aᵀ), q ⊥ n (d − 1 modes),                      (P4)
+//!   0 on vec(q cᵀ), c ⊥ a (d² − d modes).                                  (P5)
+//!
+//! (Kim & Eberle 2022 §7.3–7.4, HOBAK's `ANISOTROPIC_STVK/ARAP/FUNG::clampedHessian`
+//! use exactly these two non-zero values.) The filtered Hessian is assembled
+//! from the three orthogonal projectors, so no vector q is ever chosen:
+//! H = f(λ_along) e eᵀ + f(λ_across)(P − e eᵀ) + f(0)(I − P), P = a aᵀ ⊗ I,
+//! e = a ⊗ n. At F a = 0 the direction n is undefined but λ_along = λ_across
+//! there, so any n gives the same H (n = e₀ is used).
+//!
+//! **Numeric fallback, ψ with I4 terms** ([`FibrePath::Numeric`]). H4
+//! couples the scaling and twist modes (see [`super::frame`]) and no closed
+//! form is established here, so the raw d² × d² Hessian P2 (analytic) is
+//! projected by a symmetric eigensolve of that d² × d² block (9 × 9 in 3D,
+//! 4 × 4 in 2D): the smallest block that remains once the scalar chain rule
+//! is analytic. The isotropic scaling–scaling block of H4 is zero (I4 is
+//! linear in σ), but the coupling of scaling to twist prevents a smaller solve.
+//!
+//! **Non-finite values.** ψ = +∞ gives zero derivatives. An infinite ψ5 at
+//! F a = 0 (e.g. √I5 in anisotropic ARAP: a cone point, ψ is not
+//! differentiable there) multiplies an exact zero and contributes nothing to
+//! the gradient; the eigenvalues it makes infinite are dropped to the
+//! filter's floor (raw: passed through). NaN in a raw Hessian entry (∞ − ∞
+//! at a pole of H4, σ_i + σ_j = 0) is reported as +∞; filters never see it
+//! (a non-finite raw Hessian projects to zero).
+
+use nalgebra::{SMatrix, SVector};
+
+use super::frame::{Frame, fa_i5, mul0};
+use crate::fibre::{FibreDerivs, FibreEnergy, FibreUse};
+use crate::filter::Filter;
+
+/// Which eigensystem produced a fibre Hessian.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FibrePath {
+    /// ψ was not finite or F had a non-finite entry: zero derivatives.
+    Degenerate,
+    /// Closed form (eqs. P3–P5): ψ has no I4 derivative at this point.
+    ClosedI5,
+    /// Analytic raw Hessian, projected by a d² × d² symmetric eigensolve.
+    Numeric,
+}
+
+/// The three distinct eigenvalues of a ψ without I4 terms (eqs. P3–P5):
+/// `[λ_along, λ_across, 0]`, with 0·∞ = 0 at F a = 0.
+pub fn i5_eigenvalues(d: &FibreDerivs, i5: f64) -> [f64; 3] {
+    [2.0 * d.d5 + mul0(4.0 * d.d55, i5), 2.0 * d.d5, 0.0]
+}
+
+/// Unit n = F a/‖F a‖ (e₀ when F a = 0), scaled first so tiny F a is exact.
+fn unit<const D: usize>(fa: &[f64; D]) -> [f64; D] {
+    let m = fa.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 {
+        return std::array::from_fn(|i| if i == 0 { 1.0 } else { 0.0 });
+    }
+    let y: [f64; D] = std::array::from_fn(|i| fa[i] / m);
+    let n = y.iter().map(|x| x * x).sum::<f64>().sqrt();
+    std::array::from_fn(|i| y[i] / n)
+}
+
+/// Closed-form filtered (or raw) Hessian of eqs. P3–P5.
+fn closed_hessian<const D: usize, const N: usize>(
+    lam: [f64; 3],
+    a: &SVector<f64, D>,
+    fa: &[f64; D],
+    filter: Filter,
+) -> SMatrix<f64, N, N> {
+    let n = unit(fa);
+    let [f1, f2, f0] = lam.map(|l| filter.apply(l));
+    SMatrix::from_fn(|i, j| {
+        let (ci, ri, cj, rj) = (i / D, i % D, j / D, j % D);
+        let p = if ri == rj { a[ci] * a[cj] } else { 0.0 };
+        let e = a[ci] * n[ri] * a[cj] * n[rj];
+        let id = if i == j { 1.0 } else { 0.0 };
+        mul0(f0, id - p) + mul0(f2, p - e) + mul0(f1, e)
+    })
+}
+
+/// Raw Hessian P2 from the frame (numeric path).
+fn raw_hessian<const D: usize, const N: usize>(
+    fr: &Frame<D>,
+    a: &SVector<f64, D>,
+    d: &FibreDerivs,
+    g4: &SVector<f64, N>,
+    g5: &SVector<f64, N>,
+) -> SMatrix<f64, N, N> {
+    let h5 = Frame::<D>::hess5::<N>(a);
+    let h4 = if d.d4 != 0.0 {
+        fr.hess4::<N>()
+    } else {
+        SMatrix::zeros()
+    };
+    SMatrix::from_fn(|i, j| {
+        let v = mul0(d.d5, h5[(i, j)])
+            + mul0(d.d4, h4[(i, j)])
+            + mul0(d.d44, g4[i] * g4[j])
+            + mul0(d.d45, g4[i] * g5[j] + g5[i] * g4[j])
+            + mul0(d.d55, g5[i] * g5[j]);
+        if v.is_nan() { f64::INFINITY } else { v }
+    })
+}
+
+/// Whether ψ has an I4 derivative at this point (decides the path).
+fn has_i4(uses: FibreUse, d: &FibreDerivs) -> bool {
+    matches!(uses, FibreUse::I4 | FibreUse::Both) && (d.d4 != 0.0 || d.d44 != 0.0 || d.d45 != 0.0)
+}
+
+/// Result of [`point_kernel`]: ψ, vec(∂ψ/∂F), ∂²ψ/∂f², path.
+pub(crate) type PointOut<const N: usize> = (f64, SVector<f64, N>, SMatrix<f64, N, N>, FibrePath);
+
+/// ψ, gradient and (if asked) Hessian at F; `project` is the d² × d²
+/// numeric projection (monomorphised per size by the caller).
+pub(crate) fn point_kernel<const D: usize, const N: usize, E: FibreEnergy<D> + ?Sized>(
+    e: &E,
+    f: &SMatrix<f64, D, D>,
+    a: &SVector<f64, D>,
+    filter: Filter,
+    want_hessian: bool,
+    project: impl Fn(&SMatrix<f64, N, N>, Filter) -> SMatrix<f64, N, N>,
+) -> PointOut<N> {
+    let degenerate = |psi: f64| {
+        (
+            psi,
+            SVector::zeros(),
+            SMatrix::zeros(),
+            FibrePath::Degenerate,
+        )
+    };
+    if !f.iter().all(|x| x.is_finite()) {
+        return degenerate(f64::NAN);
+    }
+    let uses = e.uses();
+    let frame = matches!(uses, FibreUse::I4 | FibreUse::Both).then(|| Frame::new(f, a));
+    let (fa, i5) = fa_i5(f, a);
+    let i4 = frame.as_ref().map_or(f64::NAN, |fr| fr.i4);
+    let d = e.fibre(i4, i5);
+    if !d.psi.is_finite() {
+        return degenerate(d.psi);
+    }
+    let g5: SVector<f64, N> = SVector::from_fn(|k, _| 2.0 * fa[k % D] * a[k / D]);
+    match frame.filter(|_| has_i4(uses, &d)) {
+        None => {
+            let grad = g5.map(|x| mul0(d.d5, x));
+            let hess = if want_hessian {
+                closed_hessian::<D, N>(i5_eigenvalues(&d, i5), a, &fa, filter)
+            } else {
+                SMatrix::zeros()
+            };
+            (d.psi, grad, hess, FibrePath::ClosedI5)
+        }
+        Some(fr) => {
+            let g4: SVector<f64, N> = fr.grad4();
+            let grad = SVector::from_fn(|k, _| mul0(d.d4, g4[k]) + mul0(d.d5, g5[k]));
+            let hess = if want_hessian {
+                project(&raw_hessian(&fr, a, &d, &g4, &g5), filter)
+            } else {
+                SMatrix::zeros()
+            };
+            (d.psi, grad, hess, FibrePath::Numeric)
+        }
+    }
+}
