@@ -93,7 +93,8 @@ pub struct DimIr {
     /// vanishes there, not cancelled; checked by growth): the solver must
     /// keep det F > 0. Finite powers such as `I3^(1/3)` are not barriers.
     pub barrier: bool,
-    /// Ψ depends only on I2 and I3 (no I1, no stretch): computable without an SVD.
+    /// Ψ and its active domain conditions depend only on I2 and I3 (no I1,
+    /// no stretch): computable without an SVD.
     pub svd_free: bool,
     /// Ψ is unchanged by (σi, σj) → (−σj, −σi) for every pair (proved; false if unknown).
     pub sign_symmetric: bool,

@@ -15,9 +15,13 @@
 //! twist its limit — for a sign-symmetric Ψ the runtime's (A_ii + A_jj)/2 + A_ij,
 //! otherwise the IR's second-order corrected limit, evaluated by the same tape
 //! ([`ecc_runtime::divided::TwistRule`]). Ψ = NaN (e.g. log of a negative
-//! number) is reported as +∞: the point is outside the energy's domain.
+//! number) is reported as +∞: the point is outside the energy's domain, as
+//! is every point where a condition of the domain *as written* fails
+//! ([`DimIr::active_guards`]: `exp(log(I3))` is +∞ for I3 ≤ 0 although the
+//! CAS simplified it to I3). The guards' arguments are extra outputs of the
+//! same tapes, so they cost one comparison each on values already computed.
 
-use ecc_dsl::{DimIr, PairIr, PairKind, Path, Sym};
+use ecc_dsl::{DimIr, DomainCond, PairIr, PairKind, Path, Sym};
 use ecc_runtime::divided::TwistRule;
 use ecc_runtime::invariants::spectral_from_invariants_with;
 use ecc_runtime::stretch::spectral_from_stretch_with;
@@ -27,8 +31,9 @@ use crate::error::BuildError;
 use crate::tape::Tape;
 
 /// Outputs of the full tape: Ψ, then 9 invariant derivatives or D + D² stretch
-/// ones, then up to 3 removable-twist limits.
-const MAX_OUT: usize = 1 + 3 + 9 + 3;
+/// ones, then up to 3 removable-twist limits, then the domain guards'
+/// arguments (beyond this many outputs a buffer is allocated per call).
+const MAX_OUT: usize = 1 + 3 + 9 + 3 + 16;
 
 /// How the twist of one pair slot is resolved on σi + σj = 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,6 +60,9 @@ pub struct InterpEnergy<const D: usize> {
     info: EnergyInfo,
     decoupled: bool,
     twist: [TwistSpec; 3],
+    /// The domain conditions to test: the guards' arguments are the last
+    /// `guards.len()` outputs of both tapes.
+    guards: Vec<DomainCond>,
 }
 
 /// Ψ values that mean "outside the domain" — NaN (log of a negative
@@ -124,9 +132,19 @@ impl<const D: usize> InterpEnergy<D> {
             }
         }
         let twist = twist_specs(ir, &mut roots)?;
-        // Trust `svd_free` only when Ψ really reads neither I1 nor σ.
-        let svd_free = ir.svd_free && !g.uses_sigma(ir.psi) && !g.may_depend(ir.psi, Sym::I1);
-        let psi_tape = Tape::compile(g, &[ir.psi])?;
+        let guards: Vec<DomainCond> = ir.active_guards().map(|d| d.cond).collect();
+        let args: Vec<ecc_dsl::Id> = ir.active_guards().map(|d| d.arg).collect();
+        roots.extend_from_slice(&args);
+        let mut psi_roots = vec![ir.psi];
+        psi_roots.extend_from_slice(&args);
+        // Trust `svd_free` only when Ψ really reads neither I1 nor σ (nor do
+        // the domain conditions it tests).
+        let svd_free = ir.svd_free
+            && [ir.psi]
+                .iter()
+                .chain(&args)
+                .all(|&x| !g.uses_sigma(x) && !g.may_depend(x, Sym::I1));
+        let psi_tape = Tape::compile(g, &psi_roots)?;
         let full_tape = Tape::compile(g, &roots)?;
         let psi_frozen = psi_tape.freeze(params);
         let full_frozen = full_tape.freeze(params);
@@ -145,6 +163,7 @@ impl<const D: usize> InterpEnergy<D> {
             },
             decoupled: ir.decoupled,
             twist,
+            guards,
         })
     }
 
@@ -159,9 +178,56 @@ impl<const D: usize> InterpEnergy<D> {
     }
 
     fn psi_at(&self, sigma: [f64; 3], inv: [f64; 3]) -> f64 {
-        let mut out = [0.0];
-        self.psi_tape.eval(&self.psi_frozen, sigma, inv, &mut out);
-        domain(out[0])
+        with_outputs(self.psi_tape.n_outputs(), |out| {
+            self.psi_tape.eval(&self.psi_frozen, sigma, inv, out);
+            self.checked_psi(out)
+        })
+    }
+
+    /// The spectral data from the full tape's outputs at σ.
+    fn spectral_from(&self, sigma: &[f64; D], out: &[f64]) -> Spectral<D> {
+        let psi = self.checked_psi(out);
+        if psi == f64::INFINITY {
+            return Spectral::infinite();
+        }
+        let rules = self.twist.map(|t| match t {
+            TwistSpec::Fixed(r) => r,
+            TwistSpec::LimitAt(k) => TwistRule::Removable(out[k]),
+        });
+        match self.path {
+            Path::Invariant => {
+                let d1 = [out[1], out[2], out[3]];
+                let d2 = std::array::from_fn(|k| out[4 + k]);
+                spectral_from_invariants_with(sigma, psi, d1, d2, self.decoupled, rules)
+            }
+            Path::Stretch => {
+                let grad = std::array::from_fn(|i| out[1 + i]);
+                let hess = std::array::from_fn(|i| std::array::from_fn(|j| out[1 + D + i * D + j]));
+                spectral_from_stretch_with(sigma, psi, grad, hess, rules)
+            }
+        }
+    }
+
+    /// Ψ = `out[0]` as written: +∞ when it is not finite or a domain
+    /// condition on the last outputs fails.
+    fn checked_psi(&self, out: &[f64]) -> f64 {
+        let args = &out[out.len() - self.guards.len()..];
+        if self.guards.iter().zip(args).all(|(c, &x)| c.holds(x)) {
+            domain(out[0])
+        } else {
+            f64::INFINITY
+        }
+    }
+}
+
+/// Run `f` on a zeroed output buffer of length `n` (on the stack up to
+/// [`MAX_OUT`]).
+#[inline]
+fn with_outputs<R>(n: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
+    if n <= MAX_OUT {
+        f(&mut [0.0; MAX_OUT][..n])
+    } else {
+        f(&mut vec![0.0; n])
     }
 }
 
@@ -206,30 +272,10 @@ impl<const D: usize> Energy<D> for InterpEnergy<D> {
 
     fn spectral(&self, sigma: &[f64; D]) -> Spectral<D> {
         let (s, inv) = invariants(sigma);
-        let mut out = [0.0; MAX_OUT];
-        let n = self.full_tape.n_outputs();
-        self.full_tape
-            .eval(&self.full_frozen, s, inv, &mut out[..n]);
-        let psi = domain(out[0]);
-        if psi == f64::INFINITY {
-            return Spectral::infinite();
-        }
-        let rules = self.twist.map(|t| match t {
-            TwistSpec::Fixed(r) => r,
-            TwistSpec::LimitAt(k) => TwistRule::Removable(out[k]),
-        });
-        match self.path {
-            Path::Invariant => {
-                let d1 = [out[1], out[2], out[3]];
-                let d2 = std::array::from_fn(|k| out[4 + k]);
-                spectral_from_invariants_with(sigma, psi, d1, d2, self.decoupled, rules)
-            }
-            Path::Stretch => {
-                let grad = std::array::from_fn(|i| out[1 + i]);
-                let hess = std::array::from_fn(|i| std::array::from_fn(|j| out[1 + D + i * D + j]));
-                spectral_from_stretch_with(sigma, psi, grad, hess, rules)
-            }
-        }
+        with_outputs(self.full_tape.n_outputs(), |out| {
+            self.full_tape.eval(&self.full_frozen, s, inv, out);
+            self.spectral_from(sigma, out)
+        })
     }
 
     fn info(&self) -> EnergyInfo {

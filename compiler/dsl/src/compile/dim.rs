@@ -138,7 +138,15 @@ fn analyse(
         rational: conv.rational(g, psi_s).is_some(),
         sign_symmetric: checks::sign_symmetric(g, conv, psi_s, dim),
         barrier: checks::barrier(g, conv, psi_s, dim, input.params, input.domain),
-        svd_free: !g.may_depend(psi, Sym::I1) && !g.uses_sigma(psi),
+        svd_free: std::iter::once(psi)
+            .chain(
+                input
+                    .domain
+                    .iter()
+                    .filter(|d| !d.enforced_by_psi)
+                    .map(|d| d.arg),
+            )
+            .all(|x| !g.may_depend(x, Sym::I1) && !g.uses_sigma(x)),
     })
 }
 
