@@ -21,7 +21,7 @@ use std::ops::Index;
 use nalgebra::{ArrayStorage, SMatrix, SVector};
 
 use crate::assemble::{Filtered, expand_nodes, modal_sum};
-use crate::element::{ElementEval, Rest, RestError, det};
+use crate::element::{Congruence, ElementEval, Rest, RestError, det};
 use crate::energy::Energy;
 use crate::filter::Filter;
 use crate::modes::{Modes, gradient_vec, mode_vectors};
@@ -92,6 +92,17 @@ pub trait Dim<const D: usize>: sealed::Sealed + Copy + Debug + Send + Sync + 'st
         e: &E,
         f: &SMatrix<f64, D, D>,
         rest: &Rest<D>,
+        filter: Filter,
+        want_hessian: bool,
+    ) -> ElementEval<D>
+    where
+        Space<D>: Dim<D>;
+    /// Element kernel behind [`element_eval_projected`](crate::element_eval_projected).
+    fn element_kernel_projected<E: Energy<D> + ?Sized>(
+        e: &E,
+        f: &SMatrix<f64, D, D>,
+        rest: &Rest<D>,
+        congruence: &Congruence<D>,
         filter: Filter,
         want_hessian: bool,
     ) -> ElementEval<D>
@@ -280,6 +291,31 @@ macro_rules! dim {
                 let (psi, grad, hess) =
                     element_kernel::<$d, $k, $n, $ne, E>(e, f, rest, filter, want_hessian);
                 ElementEval { psi, grad, hess }
+            }
+
+            #[inline]
+            fn element_kernel_projected<E: Energy<$d> + ?Sized>(
+                e: &E,
+                f: &SMatrix<f64, $d, $d>,
+                rest: &Rest<$d>,
+                congruence: &Congruence<$d>,
+                filter: Filter,
+                want_hessian: bool,
+            ) -> ElementEval<$d> {
+                let (psi, grad, hess) = crate::element::congruence::kernel::<$d, $k, $n, $ne, E>(
+                    e,
+                    f,
+                    rest,
+                    congruence,
+                    filter,
+                    want_hessian,
+                    crate::element::congruence::sym_eigen_n::<$n>,
+                );
+                ElementEval {
+                    psi,
+                    grad: SVector::from(grad),
+                    hess: SMatrix::from_array_storage(ArrayStorage(hess)),
+                }
             }
         }
     };

@@ -124,7 +124,10 @@ pub mod svd;
 pub mod sym;
 
 pub use dim::{Dim, ElemMat, ElemVec, FMat, FVec, Nodes, Space};
-pub use element::{ElementEval, Rest, RestError, element_eval, element_f, element_psi};
+pub use element::{
+    Congruence, ElementEval, Rest, RestError, element_eval, element_eval_projected, element_f,
+    element_psi,
+};
 pub use energy::{Energy, EnergyInfo, ParamError};
 pub use fibre::{FibreDerivs, FibreEnergy, FibreUse};
 pub use filter::Filter;

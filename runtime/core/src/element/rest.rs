@@ -163,3 +163,12 @@ pub(crate) fn tetrahedron(p: &[[f64; 3]; 4]) -> Result<Rest<3>, RestError> {
 fn inverse2(dm: &Matrix2<f64>, det: f64) -> Matrix2<f64> {
     Matrix2::new(dm[(1, 1)], -dm[(0, 1)], -dm[(1, 0)], dm[(0, 0)]) / det
 }
+
+impl<const D: usize> Rest<D> {
+    /// The rest-time factors of the exact element projection
+    /// ([`crate::element_eval_projected`]): M^{±½} of M = βᵀβ, see
+    /// [`crate::element::Congruence`].
+    pub fn congruence(&self) -> super::Congruence<D> {
+        super::Congruence::new(self)
+    }
+}
