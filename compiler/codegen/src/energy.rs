@@ -6,6 +6,7 @@ use ecc_dsl::{DimIr, Id, Module, PairIr, PairKind, ScaleIr, Sym};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
 
+use crate::domain;
 use crate::error::CodegenError;
 use crate::options::{GenOptions, Visibility};
 use crate::plan::{Plan, Region, Root, is_keyword, unique};
@@ -426,19 +427,40 @@ fn energy_impl(ctx: &Ctx, d: &DimIr, name: &str) -> TokenStream {
     }
 }
 
-fn psi_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
-    let dim = int(d.dim as usize);
-    let roots = [Root {
+/// Ψ's root and the roots of its active domain conditions.
+fn psi_roots(d: &DimIr) -> Vec<Root> {
+    let mut roots = vec![Root {
         id: d.psi,
         region: Region::Psi,
         name: "psi".into(),
         bind: true,
     }];
+    roots.extend(domain::roots(d));
+    roots
+}
+
+/// `psi.is_finite()`, and every active domain condition (`&& i3 > 0.0`).
+fn inside(d: &DimIr, plan: &Plan, psi: &TokenStream) -> TokenStream {
+    let mut out = quote!(#psi.is_finite());
+    for (arg, rel) in domain::tests(d, plan) {
+        let arg = arg.tokens();
+        out.extend(match rel {
+            ">" => quote!(&& #arg > 0.0),
+            _ => quote!(&& #arg >= 0.0),
+        });
+    }
+    out
+}
+
+fn psi_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
+    let dim = int(d.dim as usize);
+    let roots = psi_roots(d);
     let namer = leaf_namer(ctx);
     let plan = Plan::new(&d.graph, d.dim, &roots, &hints(d), &namer, RESERVED);
     let prelude = prelude(ctx, d.dim, &plan, &[]);
     let lets = plan.lets(Region::Psi);
     let (bind, psi) = psi_binding(&plan, d.psi);
+    let inside = inside(d, &plan, &psi);
     let sigma = if prelude.is_empty() {
         quote!(_sigma)
     } else {
@@ -449,7 +471,7 @@ fn psi_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
             #prelude
             #lets
             #bind
-            if #psi.is_finite() { #psi } else { f64::INFINITY }
+            if #inside { #psi } else { f64::INFINITY }
         }
     }
 }
@@ -459,12 +481,7 @@ fn psi_i2_i3_fn(ctx: &Ctx, d: &DimIr) -> (TokenStream, bool) {
     if !d.svd_free {
         return (TokenStream::new(), false);
     }
-    let roots = [Root {
-        id: d.psi,
-        region: Region::Psi,
-        name: "psi".into(),
-        bind: true,
-    }];
+    let roots = psi_roots(d);
     let namer = leaf_namer(ctx);
     let plan = Plan::new(&d.graph, d.dim, &roots, &hints(d), &namer, RESERVED);
     let leaves = plan.leaves();
@@ -497,12 +514,13 @@ fn psi_i2_i3_fn(ctx: &Ctx, d: &DimIr) -> (TokenStream, bool) {
         .collect();
     let lets = plan.lets(Region::Psi);
     let (bind, psi) = psi_binding(&plan, d.psi);
+    let inside = inside(d, &plan, &psi);
     let f = quote! {
         fn psi_i2_i3(&self, #i2: f64, #i3: f64) -> Option<f64> {
             #params
             #lets
             #bind
-            Some(if #psi.is_finite() { #psi } else { f64::INFINITY })
+            Some(if #inside { #psi } else { f64::INFINITY })
         }
     };
     (f, true)
@@ -533,12 +551,7 @@ fn spectral_roots(d: &DimIr) -> (Vec<Root>, Vec<Guard>) {
         name,
         bind: true,
     };
-    let mut roots = vec![Root {
-        id: d.psi,
-        region: Region::Psi,
-        name: "psi".into(),
-        bind: true,
-    }];
+    let mut roots = psi_roots(d);
     for (i, &g) in sp.grad.iter().enumerate() {
         roots.push(main(g, format!("psi_s{}", i + 1)));
     }
@@ -708,6 +721,12 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
     let (bind, psi) = psi_binding(&plan, d.psi);
     let main_lets = plan.lets(Region::Main);
     let guard_lets = guard_lets(rt, d, &plan, &guards);
+    let outside = if d.active_guards().next().is_none() {
+        quote!(!#psi.is_finite())
+    } else {
+        let inside = inside(d, &plan, &psi);
+        quote!(!(#inside))
+    };
     let psi_field = if psi.to_string() == "psi" {
         quote!(psi)
     } else {
@@ -722,7 +741,7 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
             #prelude
             #psi_lets
             #bind
-            if !#psi.is_finite() {
+            if #outside {
                 return #rt::Spectral::infinite();
             }
             #main_lets

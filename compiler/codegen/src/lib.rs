@@ -55,6 +55,7 @@
 
 pub mod build;
 pub mod cpp;
+mod domain;
 mod energy;
 mod error;
 mod options;

@@ -37,6 +37,28 @@ fn code(d: &DimIr, id: ecc_dsl::Id) -> String {
     format!("`{}`", d.graph.to_text(id))
 }
 
+/// The written domain of Ψ in maths (`I3 > 0`): the conditions evaluators
+/// test, then those Ψ enforces by itself, or `all F`.
+fn domain_text(d: &DimIr) -> String {
+    if d.domain.is_empty() {
+        return "all F".to_string();
+    }
+    let list = |enforced: bool| {
+        d.domain
+            .iter()
+            .filter(|g| g.enforced_by_psi == enforced)
+            .map(|g| format!("`{} {} 0`", d.graph.to_text(g.arg), g.cond.relation()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let (tested, own) = (list(false), list(true));
+    match (tested.is_empty(), own.is_empty()) {
+        (_, true) => tested,
+        (true, false) => format!("{own} (Ψ itself is +∞ or NaN outside)"),
+        (false, false) => format!("{tested}; {own} (Ψ itself is +∞ or NaN outside)"),
+    }
+}
+
 fn yes(b: bool) -> &'static str {
     if b { "yes" } else { "no" }
 }
@@ -50,6 +72,7 @@ fn dim_section(out: &mut String, d: &DimIr) {
     };
     let _ = writeln!(out, "| property | value |\n|---|---|");
     let _ = writeln!(out, "| path | {path} |");
+    let _ = writeln!(out, "| domain (Ψ = +∞ elsewhere) | {} |", domain_text(d));
     let _ = writeln!(out, "| barrier (keep det F > 0) | {} |", yes(d.barrier));
     let _ = writeln!(out, "| SVD-free Ψ (I2, I3 only) | {} |", yes(d.svd_free));
     let _ = writeln!(

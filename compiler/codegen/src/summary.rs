@@ -48,6 +48,16 @@ pub(crate) fn dim_facts(d: &DimIr) -> Vec<String> {
         yes(d.svd_free),
         yes(d.sign_symmetric)
     ));
+    let tested: Vec<String> = d
+        .active_guards()
+        .map(|g| format!("{} {} 0", d.graph.to_text(g.arg), g.cond.relation()))
+        .collect();
+    if !tested.is_empty() {
+        out.push(format!(
+            "domain as written (tested, Ψ = +∞ elsewhere): {}",
+            tested.join(", ")
+        ));
+    }
     out
 }
 

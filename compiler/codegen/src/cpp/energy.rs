@@ -427,12 +427,35 @@ fn psi_root(d: &DimIr) -> Root {
     }
 }
 
+/// Ψ's root and the roots of its active domain conditions.
+fn psi_roots(d: &DimIr) -> Vec<Root> {
+    let mut roots = vec![psi_root(d)];
+    roots.extend(crate::domain::roots(d));
+    roots
+}
+
+/// `if (!(a > 0.0 && …)) <then>` for the active domain conditions (empty
+/// when there are none).
+fn domain_test(d: &DimIr, plan: &Plan, then: &str) -> String {
+    let tests: Vec<String> = crate::domain::tests(d, plan)
+        .iter()
+        .map(|(arg, rel)| format!("{} {rel} 0.0", cpp(arg)))
+        .collect();
+    if tests.is_empty() {
+        return String::new();
+    }
+    format!(
+        "        if (!({})) {then}  // outside the domain as written\n",
+        tests.join(" && ")
+    )
+}
+
 fn psi_fn(ctx: &Ctx, d: &DimIr) -> String {
     let namer = |s: Sym| ctx.leaf_name(s);
     let plan = Plan::new(
         &d.graph,
         d.dim,
-        &[psi_root(d)],
+        &psi_roots(d),
         &hints(d),
         &namer,
         &ctx.taken(),
@@ -441,10 +464,11 @@ fn psi_fn(ctx: &Ctx, d: &DimIr) -> String {
     format!(
         "    /// Ψ(σ) in {n}D (σ: signed singular values, |σ0| ≥ … , only the last may be < 0);\n\
          \x20   /// +∞ outside the domain, never NaN.\n\
-         \x20   ECC_HOST_DEVICE double psi(const double (&sigma)[{n}]) const {{\n{}{}\
+         \x20   ECC_HOST_DEVICE double psi(const double (&sigma)[{n}]) const {{\n{}{}{}\
          \x20       return ::ecc::finite_or_inf({});\n    }}\n",
         prelude(n, &plan, &[]),
         lets(&plan, Region::Psi, "        "),
+        domain_test(d, &plan, "return ::ecc::infinity();"),
         cpp(&plan.value_ex(d.psi)),
     )
 }
@@ -464,7 +488,7 @@ struct Guard {
 /// as two lazily computed branches and their denominator).
 fn spectral_roots(d: &DimIr) -> (Vec<Root>, Vec<Guard>) {
     let sp = &d.spectral;
-    let mut roots = vec![psi_root(d)];
+    let mut roots = psi_roots(d);
     let main = |id: Id, name: String| Root {
         id,
         region: Region::Main,
@@ -600,6 +624,11 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> String {
         s,
         "        if (!std::isfinite({psi})) return ::ecc::Spectral<{n}>::infinite();  // outside the domain"
     );
+    s.push_str(&domain_test(
+        d,
+        &plan,
+        &format!("return ::ecc::Spectral<{n}>::infinite();"),
+    ));
     s.push_str(&lets(&plan, Region::Main, "        "));
     for g in &guards {
         s.push_str(&guard_text(&plan, n, g));

@@ -56,7 +56,7 @@ fn sign_in(g: &Graph, x: Id, budget: &mut usize) -> Sign {
         Node::Num(r) if r.is_zero() => Sign::NonNegative,
         Node::Sym(Sym::I2) => Sign::NonNegative,
         Node::Exp(_) => Sign::Positive,
-        Node::Add(c) => combine(g, c, budget, |a| a.iter().any(|s| *s == Sign::Positive)),
+        Node::Add(c) => combine(g, c, budget, |a| a.contains(&Sign::Positive)),
         Node::Mul(c) => combine(g, c, budget, |a| a.iter().all(|s| *s == Sign::Positive)),
         Node::Pow([b, e]) => pow_sign(g, *b, *e, budget),
         _ => Sign::Unknown,
@@ -106,11 +106,10 @@ fn pow_sign(g: &Graph, b: Id, e: Id, budget: &mut usize) -> Sign {
 
 /// Whether the sign proves `cond` for every input where `x` is defined.
 fn proved(g: &Graph, x: Id, cond: DomainCond) -> bool {
-    match (sign(g, x), cond) {
-        (Sign::Positive, _) => true,
-        (Sign::NonNegative, DomainCond::NonNegative) => true,
-        _ => false,
-    }
+    matches!(
+        (sign(g, x), cond),
+        (Sign::Positive, _) | (Sign::NonNegative, DomainCond::NonNegative)
+    )
 }
 
 /// Add `cond` on `x` to `out` unless proved; merged with an existing
