@@ -89,6 +89,7 @@
 
 pub mod data;
 pub mod error;
+pub mod fibre;
 pub mod generate;
 pub mod geometry;
 pub mod io;
@@ -99,6 +100,9 @@ pub mod validate;
 
 pub use data::{data_dir, data_file};
 pub use error::{MeshError, ParseError, TutteError, ValidationError};
+pub use fibre::{
+    FibreError, FibreGenerator, centroids, check_directions, from_references, read_vtk_fibres,
+};
 pub use generate::{
     bar_tet, box_tet, box_tet_with_at_least, disk_tri, disk_with_ear, grid_tri,
     grid_tri_with_at_least,

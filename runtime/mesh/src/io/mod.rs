@@ -8,6 +8,7 @@
 //! 1-based line of the problem.
 
 mod atomic;
+pub mod fibres;
 pub mod gmsh;
 pub mod medit;
 pub mod obj;
@@ -18,6 +19,7 @@ mod write;
 
 use std::path::Path;
 
+pub use fibres::{DEFAULT_FIBRE_NAMES, parse_medit_references, parse_vtk_cell_vectors};
 pub use gmsh::parse_gmsh;
 pub use medit::parse_medit;
 pub use obj::parse_obj;
