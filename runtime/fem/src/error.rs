@@ -66,6 +66,13 @@ pub enum FemError {
     /// An element's rest shape is degenerate (zero or negative measure).
     #[error("element {element}: degenerate rest shape ({reason})")]
     DegenerateRest { element: usize, reason: String },
+    /// An element's fibre direction is unusable (zero or non-finite).
+    #[error("element {element}: fibre direction {direction:?} is {reason}")]
+    BadFibre {
+        element: usize,
+        direction: Vec<f64>,
+        reason: &'static str,
+    },
     /// The mesh has no elements.
     #[error("the mesh has no elements")]
     EmptyMesh,
