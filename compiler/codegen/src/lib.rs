@@ -63,6 +63,7 @@ mod plan;
 mod render;
 mod report;
 mod summary;
+mod syntax;
 
 pub use cpp::{CppOptions, CppRuntime, generate_cpp};
 pub use error::CodegenError;

@@ -1,5 +1,7 @@
 //! A tiny expression tree for generated arithmetic and its rendering to
-//! tokens with the fewest parentheses Rust's precedence allows.
+//! tokens with the fewest parentheses Rust's precedence allows (the walk is
+//! shared with the C++ back end: [`crate::syntax`]; this file supplies the
+//! Rust tokens).
 //!
 //! Products keep their numerator and denominator apart so that
 //! `c·x·y⁻¹·z⁻²` renders as `c * x / (y * z * z)`; sums keep the sign of each
@@ -7,6 +9,8 @@
 
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
+
+use crate::syntax::{self, BinOp, Prec, Syntax};
 
 /// An arithmetic expression in generated code.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,15 +34,6 @@ pub(crate) enum Ex {
     Method(Box<Ex>, &'static str, Vec<Ex>),
     /// An integer literal (the argument of `powi`).
     Int(i32),
-}
-
-/// Binding strength of a rendered fragment (higher binds tighter).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Prec {
-    Sum = 1,
-    Prod = 2,
-    Unary = 3,
-    Atom = 4,
 }
 
 impl Ex {
@@ -84,7 +79,7 @@ impl Ex {
 
     /// Whether the expression is (syntactically) a negation or a negative
     /// constant, so that a sum may subtract its negation instead.
-    fn is_negative(&self) -> bool {
+    pub(crate) fn is_negative(&self) -> bool {
         match self {
             Ex::Lit(v) => v.is_sign_negative() && *v != 0.0,
             Ex::Prod { neg, .. } => *neg,
@@ -94,163 +89,80 @@ impl Ex {
 
     /// The tokens of the expression.
     pub(crate) fn tokens(&self) -> TokenStream {
-        self.render().0
-    }
-
-    fn render(&self) -> (TokenStream, Prec) {
-        match self {
-            Ex::Lit(v) => lit(*v, false),
-            Ex::Var(name) => {
-                let id = Ident::new(name, Span::call_site());
-                (quote!(#id), Prec::Atom)
-            }
-            Ex::Int(n) => {
-                let l = Literal::i32_unsuffixed(n.abs());
-                if *n < 0 {
-                    (quote!(-#l), Prec::Unary)
-                } else {
-                    (quote!(#l), Prec::Atom)
-                }
-            }
-            Ex::Sum(terms) => render_sum(terms),
-            Ex::Prod { neg, num, den } => render_prod(*neg, num, den),
-            Ex::Method(recv, method, args) => {
-                let r = match recv.as_ref() {
-                    Ex::Lit(v) => wrap(lit(*v, true), Prec::Atom),
-                    other => wrap(other.render(), Prec::Atom),
-                };
-                let m = Ident::new(method, Span::call_site());
-                let args: Vec<TokenStream> = args.iter().map(Ex::tokens).collect();
-                (quote!(#r.#m(#(#args),*)), Prec::Atom)
-            }
-        }
+        syntax::render(&Rust, self).0
     }
 }
 
-/// An `f64` literal; `suffixed` adds `_f64` (needed for a method receiver).
-fn lit(v: f64, suffixed: bool) -> (TokenStream, Prec) {
-    if v.is_nan() {
-        return (quote!(f64::NAN), Prec::Atom);
-    }
-    if v.is_infinite() {
-        return if v > 0.0 {
-            (quote!(f64::INFINITY), Prec::Atom)
+/// Rust tokens for the shared printer ([`syntax`]).
+struct Rust;
+
+impl Syntax for Rust {
+    type Out = TokenStream;
+
+    /// An `f64` literal; a method receiver gets the `_f64` suffix.
+    fn lit(&self, v: f64, receiver: bool) -> (TokenStream, Prec) {
+        if v.is_nan() {
+            return (quote!(f64::NAN), Prec::Atom);
+        }
+        if v.is_infinite() {
+            return if v > 0.0 {
+                (quote!(f64::INFINITY), Prec::Atom)
+            } else {
+                (quote!(f64::NEG_INFINITY), Prec::Atom)
+            };
+        }
+        let text = format!("{:?}", v.abs());
+        let text = if receiver {
+            format!("{text}_f64")
         } else {
-            (quote!(f64::NEG_INFINITY), Prec::Atom)
+            text
         };
-    }
-    let text = format!("{:?}", v.abs());
-    let text = if suffixed {
-        format!("{text}_f64")
-    } else {
-        text
-    };
-    let l: Literal = text
-        .parse()
-        .unwrap_or_else(|_| Literal::f64_unsuffixed(v.abs()));
-    if v.is_sign_negative() && v != 0.0 {
-        (quote!(-#l), Prec::Unary)
-    } else {
-        (quote!(#l), Prec::Atom)
-    }
-}
-
-fn wrap((t, p): (TokenStream, Prec), min: Prec) -> TokenStream {
-    if p < min { quote!((#t)) } else { t }
-}
-
-fn render_sum(terms: &[(bool, Ex)]) -> (TokenStream, Prec) {
-    // Normalise: a term that is itself negative flips its sign flag.
-    let norm: Vec<(bool, Ex)> = terms
-        .iter()
-        .map(|(n, t)| {
-            if t.is_negative() {
-                (!n, t.clone().negated())
-            } else {
-                (*n, t.clone())
-            }
-        })
-        .collect();
-    // Lead with a positive term when there is one.
-    let mut order: Vec<usize> = (0..norm.len()).collect();
-    if let Some(p) = norm.iter().position(|(n, _)| !n) {
-        order.remove(p);
-        order.insert(0, p);
-    }
-    let mut out = TokenStream::new();
-    for (k, &i) in order.iter().enumerate() {
-        let (negated, term) = &norm[i];
-        if k == 0 {
-            if *negated {
-                let t = term.clone().negated();
-                out.extend(wrap(t.render(), Prec::Prod));
-            } else {
-                out.extend(wrap(term.render(), Prec::Sum));
-            }
+        let l: Literal = text
+            .parse()
+            .unwrap_or_else(|_| Literal::f64_unsuffixed(v.abs()));
+        if v.is_sign_negative() && v != 0.0 {
+            (quote!(-#l), Prec::Unary)
         } else {
-            // The right operand of + or - must bind tighter than a sum.
-            let t = wrap(term.render(), Prec::Prod);
-            if *negated {
-                out.extend(quote!(- #t));
-            } else {
-                out.extend(quote!(+ #t));
-            }
+            (quote!(#l), Prec::Atom)
         }
     }
-    if order.is_empty() {
-        return lit(0.0, false);
-    }
-    (out, Prec::Sum)
-}
 
-fn render_prod(neg: bool, num: &[Ex], den: &[Ex]) -> (TokenStream, Prec) {
-    let mut out = TokenStream::new();
-    if num.is_empty() {
-        out.extend(lit(1.0, false).0);
+    fn var(&self, name: &str) -> TokenStream {
+        let id = Ident::new(name, Span::call_site());
+        quote!(#id)
     }
-    for (k, f) in num.iter().enumerate() {
-        // Factors must bind tighter than a product: `a * (b / c)` keeps its parentheses.
-        let t = wrap(f.render(), Prec::Unary);
-        if k == 0 {
-            out.extend(t);
+
+    fn int(&self, n: i32) -> (TokenStream, Prec) {
+        let l = Literal::i32_unsuffixed(n.abs());
+        if n < 0 {
+            (quote!(-#l), Prec::Unary)
         } else {
-            out.extend(quote!(* #t));
+            (quote!(#l), Prec::Atom)
         }
     }
-    match den.len() {
-        0 => {}
-        1 => {
-            let d = wrap(den[0].render(), Prec::Unary);
-            out.extend(quote!(/ #d));
-        }
-        _ => {
-            let mut d = TokenStream::new();
-            for (k, f) in den.iter().enumerate() {
-                let t = wrap(f.render(), Prec::Unary);
-                if k == 0 {
-                    d.extend(t);
-                } else {
-                    d.extend(quote!(* #t));
-                }
-            }
-            out.extend(quote!(/ (#d)));
+
+    fn call(&self, recv: (TokenStream, Prec), method: &str, args: Vec<TokenStream>) -> TokenStream {
+        let r = syntax::wrap(self, recv, Prec::Atom);
+        let m = Ident::new(method, Span::call_site());
+        quote!(#r.#m(#(#args),*))
+    }
+
+    fn paren(&self, t: TokenStream) -> TokenStream {
+        quote!((#t))
+    }
+
+    fn neg(&self, t: TokenStream) -> TokenStream {
+        quote!(-#t)
+    }
+
+    fn bin(&self, a: TokenStream, op: BinOp, b: TokenStream) -> TokenStream {
+        match op {
+            BinOp::Add => quote!(#a + #b),
+            BinOp::Sub => quote!(#a - #b),
+            BinOp::Mul => quote!(#a * #b),
+            BinOp::Div => quote!(#a / #b),
         }
     }
-    if neg {
-        // `-a * b` parses as `(-a) * b`, which has the same value.
-        if num.len() == 1 && den.is_empty() {
-            let t = wrap(num[0].render(), Prec::Unary);
-            return (quote!(-#t), Prec::Unary);
-        }
-        return (quote!(-#out), Prec::Prod);
-    }
-    let p = if num.len() == 1 && den.is_empty() {
-        // Just the factor, already wrapped to at least unary strength.
-        num[0].render().1.max(Prec::Unary)
-    } else {
-        Prec::Prod
-    };
-    (out, p)
 }
 
 #[cfg(test)]

@@ -10,19 +10,11 @@
 //! expression kinds the Rust printer learns are printed here too.
 
 use crate::render::Ex;
-
-/// Binding strength of a rendered fragment (higher binds tighter).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-enum Prec {
-    Sum = 1,
-    Prod = 2,
-    Unary = 3,
-    Atom = 4,
-}
+use crate::syntax::{self, BinOp, Prec, Syntax};
 
 /// The C++ text of an expression.
 pub(crate) fn cpp(e: &Ex) -> String {
-    render(e).0
+    syntax::render(&Cpp, e).0
 }
 
 /// A `double` literal: shortest round-trip digits, always with a `.` or an
@@ -45,136 +37,74 @@ pub(crate) fn lit(v: f64) -> String {
     format!("{v:?}")
 }
 
-fn wrap((t, p): (String, Prec), min: Prec) -> String {
-    if p < min { format!("({t})") } else { t }
-}
+/// C++ text for the shared printer ([`syntax`]).
+struct Cpp;
 
-fn render(e: &Ex) -> (String, Prec) {
-    match e {
-        Ex::Lit(v) => {
-            let t = lit(*v);
-            let p = if t.starts_with('-') {
-                Prec::Unary
-            } else {
-                Prec::Atom
-            };
-            (t, p)
-        }
-        Ex::Var(name) => (name.clone(), Prec::Atom),
-        Ex::Int(n) => {
-            if *n < 0 {
-                (format!("-{}", n.unsigned_abs()), Prec::Unary)
-            } else {
-                (n.to_string(), Prec::Atom)
-            }
-        }
-        Ex::Sum(terms) => render_sum(terms),
-        Ex::Prod { neg, num, den } => render_prod(*neg, num, den),
-        Ex::Method(recv, method, args) => {
-            let f = match *method {
-                "ln" => "log",
-                "powf" | "powi" => "pow",
-                "abs" => "fabs",
-                "max" => "fmax",
-                "min" => "fmin",
-                "ln_1p" => "log1p",
-                "exp_m1" => "expm1",
-                "mul_add" => "fma",
-                m => m,
-            };
-            let mut parts = vec![cpp(recv)];
-            parts.extend(args.iter().map(cpp));
-            (format!("std::{f}({})", parts.join(", ")), Prec::Atom)
-        }
-    }
-}
+impl Syntax for Cpp {
+    type Out = String;
 
-/// Whether the expression is syntactically negative (see `render.rs`).
-fn is_negative(e: &Ex) -> bool {
-    match e {
-        Ex::Lit(v) => v.is_sign_negative() && *v != 0.0,
-        Ex::Prod { neg, .. } => *neg,
-        _ => false,
-    }
-}
-
-fn render_sum(terms: &[(bool, Ex)]) -> (String, Prec) {
-    let norm: Vec<(bool, Ex)> = terms
-        .iter()
-        .map(|(n, t)| {
-            if is_negative(t) {
-                (!n, t.clone().negated())
-            } else {
-                (*n, t.clone())
-            }
-        })
-        .collect();
-    let mut order: Vec<usize> = (0..norm.len()).collect();
-    if let Some(p) = norm.iter().position(|(n, _)| !n) {
-        order.remove(p);
-        order.insert(0, p);
-    }
-    if order.is_empty() {
-        return (lit(0.0), Prec::Atom);
-    }
-    let mut out = String::new();
-    for (k, &i) in order.iter().enumerate() {
-        let (negated, term) = &norm[i];
-        if k == 0 {
-            if *negated {
-                out.push_str(&wrap(render(&term.clone().negated()), Prec::Prod));
-            } else {
-                out.push_str(&wrap(render(term), Prec::Sum));
-            }
+    fn lit(&self, v: f64, _receiver: bool) -> (String, Prec) {
+        let t = lit(v);
+        let p = if t.starts_with('-') {
+            Prec::Unary
         } else {
-            let t = wrap(render(term), Prec::Prod);
-            out.push_str(if *negated { " - " } else { " + " });
-            out.push_str(&t);
+            Prec::Atom
+        };
+        (t, p)
+    }
+
+    fn var(&self, name: &str) -> String {
+        name.to_string()
+    }
+
+    fn int(&self, n: i32) -> (String, Prec) {
+        if n < 0 {
+            (format!("-{}", n.unsigned_abs()), Prec::Unary)
+        } else {
+            (n.to_string(), Prec::Atom)
         }
     }
-    (out, Prec::Sum)
-}
 
-/// `-t`, parenthesising `t` when it starts with a minus (never `--`).
-fn minus(t: &str) -> String {
-    if t.starts_with('-') {
-        format!("-({t})")
-    } else {
-        format!("-{t}")
+    /// A `<cmath>` function of the receiver and the arguments.
+    fn call(&self, (recv, _): (String, Prec), method: &str, args: Vec<String>) -> String {
+        let f = match method {
+            "ln" => "log",
+            "powf" | "powi" => "pow",
+            "abs" => "fabs",
+            "max" => "fmax",
+            "min" => "fmin",
+            "ln_1p" => "log1p",
+            "exp_m1" => "expm1",
+            "mul_add" => "fma",
+            m => m,
+        };
+        let mut parts = vec![recv];
+        parts.extend(args);
+        format!("std::{f}({})", parts.join(", "))
     }
-}
 
-fn factors(list: &[Ex]) -> String {
-    list.iter()
-        .map(|f| wrap(render(f), Prec::Unary))
-        .collect::<Vec<_>>()
-        .join(" * ")
-}
-
-fn render_prod(neg: bool, num: &[Ex], den: &[Ex]) -> (String, Prec) {
-    let mut out = if num.is_empty() {
-        lit(1.0)
-    } else {
-        factors(num)
-    };
-    match den.len() {
-        0 => {}
-        1 => out = format!("{out} / {}", wrap(render(&den[0]), Prec::Unary)),
-        _ => out = format!("{out} / ({})", factors(den)),
+    fn paren(&self, t: String) -> String {
+        format!("({t})")
     }
-    if neg {
-        if num.len() == 1 && den.is_empty() {
-            return (minus(&wrap(render(&num[0]), Prec::Unary)), Prec::Unary);
+
+    /// `-t`, parenthesising `t` when it starts with a minus (never `--`).
+    fn neg(&self, t: String) -> String {
+        if t.starts_with('-') {
+            format!("-({t})")
+        } else {
+            format!("-{t}")
         }
-        // `-a * b` parses as `(-a) * b`, which has the same value.
-        return (minus(&out), Prec::Prod);
     }
-    let p = if num.len() == 1 && den.is_empty() {
-        render(&num[0]).1.max(Prec::Unary)
-    } else {
-        Prec::Prod
-    };
-    (out, p)
+
+    fn bin(&self, a: String, op: BinOp, b: String) -> String {
+        let op = match op {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+        };
+        format!("{a} {op} {b}")
+    }
 }
 
 #[cfg(test)]
