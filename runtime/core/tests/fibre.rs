@@ -501,3 +501,44 @@ fn parameters_and_registry() {
     assert_eq!(p.psi, f64::INFINITY);
     assert!(p.grad.iter().all(|x| *x == 0.0));
 }
+
+/// The closed-form element Hessian (eq. E2, no d² × d² matrix) equals
+/// |q| Wᵀ H W with the F-space closed form, for every filter, including an
+/// element compressed along its fibre (indefinite raw Hessian) and F a = 0.
+#[test]
+fn closed_element_hessian_equals_the_f_space_one() {
+    let p = [[0.0; 3], [1.0, 0.1, 0.0], [0.2, 0.9, 0.0], [0.1, 0.2, 1.1]];
+    let rest = Rest::<3>::new(p).unwrap();
+    // W[(c, r), (n, r')] = w_n[c] δ_rr'
+    let w = |n: usize, c: usize| {
+        if n == 0 {
+            -(0..3).map(|m| rest.dm_inv[(m, c)]).sum::<f64>()
+        } else {
+            rest.dm_inv[(n - 1, c)]
+        }
+    };
+    let wm =
+        SMatrix::<f64, 9, 12>::from_fn(|i, j| if i % 3 == j % 3 { w(j / 3, i / 3) } else { 0.0 });
+    let a = unit_fibre(&[1.0, 0.2, 0.1]).unwrap();
+    let squash = |s: f64| p.map(|q| [q[0] * s, q[1], q[2]]);
+    for x in [squash(0.5), squash(1.4), squash(1e-12)] {
+        let f = ecc_runtime::element_f(&rest, &x);
+        for e in [
+            &FibreStvk { mu: 2.0 } as &dyn FibreEnergy<3>,
+            &FibreArap { mu: 1.5 },
+            &FibreFung { k1: 1.0, k2: 0.5 },
+        ] {
+            for filter in [
+                Filter::None,
+                Filter::Clamp,
+                Filter::ClampEps(1e-3),
+                Filter::Abs,
+            ] {
+                let got = fibre_element_eval(e, &rest, &x, &a, filter, true).hess;
+                let want =
+                    wm.transpose() * fibre_f(e, &f, &a, filter, true).hess * wm * rest.measure;
+                assert!(rel(&got, &want) < 1e-12, "{} {filter:?}", e.name());
+            }
+        }
+    }
+}

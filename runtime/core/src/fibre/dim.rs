@@ -4,8 +4,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::element::{chain_matrix, psi_kernel};
-use super::point::{FibrePath, point_kernel};
+use super::element::{chain_matrix, closed_element, psi_kernel};
+use super::point::{FibrePath, Hess, point_kernel};
 use crate::dim::{Dim, FMat, FVec, Nodes, Space};
 use crate::element::{ElementEval, Rest, element_f};
 use crate::fibre::FibreEnergy;
@@ -75,7 +75,7 @@ macro_rules! fibre_dim {
                 FibrePoint {
                     psi,
                     grad,
-                    hess,
+                    hess: hess.matrix(a),
                     path,
                 }
             }
@@ -89,18 +89,33 @@ macro_rules! fibre_dim {
                 want_hessian: bool,
             ) -> (ElementEval<$d>, FibrePath) {
                 let f = element_f::<$d>(rest, x);
-                let p = Self::fibre_f(e, &f, a, filter, want_hessian);
+                let (psi, g, h, path) = point_kernel::<$d, $n, E>(
+                    e,
+                    &f,
+                    a,
+                    filter,
+                    want_hessian,
+                    project_psd_numeric::<$n>,
+                );
                 let w = chain_matrix::<$d, $k, $n, $ne>(rest);
                 let m = rest.measure;
-                let grad = w.transpose() * p.grad * m;
-                let hess = if want_hessian {
-                    let h = w.transpose() * p.hess * w * m;
-                    (h + h.transpose()) * 0.5
-                } else {
-                    SMatrix::zeros()
+                let grad = w.transpose() * g * m;
+                let hess = match h {
+                    _ if !want_hessian => SMatrix::zeros(),
+                    Hess::Closed(fl, n) => closed_element::<$d, $k, $ne>(rest, a, fl, &n),
+                    Hess::Full(h) => {
+                        let h = w.transpose() * h * w * m;
+                        (h + h.transpose()) * 0.5
+                    }
                 };
-                let psi = m * p.psi;
-                (ElementEval { psi, grad, hess }, p.path)
+                (
+                    ElementEval {
+                        psi: m * psi,
+                        grad,
+                        hess,
+                    },
+                    path,
+                )
             }
         }
     };

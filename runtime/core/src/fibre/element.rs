@@ -11,7 +11,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::frame::{Frame, fa_i5};
+use super::frame::{Frame, fa_i5, mul0};
 use crate::element::Rest;
 use crate::fibre::{FibreEnergy, FibreUse};
 
@@ -30,6 +30,41 @@ pub(crate) fn chain_matrix<const D: usize, const K: usize, const N: usize, const
         let (c, r) = (i / D, i % D);
         let (n, r2) = (j / D, j % D);
         if r == r2 { w(n, c) } else { 0.0 }
+    })
+}
+
+/// The element Hessian of the closed form (eqs. P3–P5) without forming
+/// the d² × d² matrix: with β_n = a · w_n and n the unit F a,
+/// Wᵀ H W = f0 (w_n · w_m) δ_rr' + (f_across − f0) β_n β_m δ_rr'
+///        + (f_along − f_across) β_n β_m n_r n_r', times |q|.            (E2)
+pub(crate) fn closed_element<const D: usize, const K: usize, const NE: usize>(
+    rest: &Rest<D>,
+    a: &SVector<f64, D>,
+    f: [f64; 3],
+    n: &[f64; D],
+) -> SMatrix<f64, NE, NE> {
+    let w: [[f64; D]; K] = std::array::from_fn(|k| {
+        std::array::from_fn(|c| {
+            if k == 0 {
+                -(0..D).map(|m| rest.dm_inv[(m, c)]).sum::<f64>()
+            } else {
+                rest.dm_inv[(k - 1, c)]
+            }
+        })
+    });
+    let beta: [f64; K] = std::array::from_fn(|k| (0..D).map(|c| a[c] * w[k][c]).sum());
+    let [f1, f2, f0] = f;
+    let m = rest.measure;
+    SMatrix::from_fn(|i, j| {
+        let (p, r, q, s) = (i / D, i % D, j / D, j % D);
+        let bb = beta[p] * beta[q];
+        let iso = if r == s {
+            let ww: f64 = (0..D).map(|c| w[p][c] * w[q][c]).sum();
+            mul0(f0, ww - bb) + mul0(f2, bb * (1.0 - n[r] * n[r]))
+        } else {
+            mul0(f2, -bb * n[r] * n[s])
+        };
+        m * (iso + mul0(f1, bb * n[r] * n[s]))
     })
 }
 

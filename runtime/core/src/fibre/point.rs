@@ -62,7 +62,7 @@ pub fn i5_eigenvalues(d: &FibreDerivs, i5: f64) -> [f64; 3] {
 }
 
 /// Unit n = F a/‖F a‖ (e₀ when F a = 0), scaled first so tiny F a is exact.
-fn unit<const D: usize>(fa: &[f64; D]) -> [f64; D] {
+pub(crate) fn unit<const D: usize>(fa: &[f64; D]) -> [f64; D] {
     let m = fa.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     if m == 0.0 {
         return std::array::from_fn(|i| if i == 0 { 1.0 } else { 0.0 });
@@ -72,15 +72,14 @@ fn unit<const D: usize>(fa: &[f64; D]) -> [f64; D] {
     std::array::from_fn(|i| y[i] / n)
 }
 
-/// Closed-form filtered (or raw) Hessian of eqs. P3–P5.
+/// Closed-form Hessian of eqs. P3–P5 from the filtered eigenvalues
+/// `[along, across, null]` and n.
 fn closed_hessian<const D: usize, const N: usize>(
-    lam: [f64; 3],
+    f: [f64; 3],
     a: &SVector<f64, D>,
-    fa: &[f64; D],
-    filter: Filter,
+    n: &[f64; D],
 ) -> SMatrix<f64, N, N> {
-    let n = unit(fa);
-    let [f1, f2, f0] = lam.map(|l| filter.apply(l));
+    let [f1, f2, f0] = f;
     SMatrix::from_fn(|i, j| {
         let (ci, ri, cj, rj) = (i / D, i % D, j / D, j % D);
         let p = if ri == rj { a[ci] * a[cj] } else { 0.0 };
@@ -119,8 +118,26 @@ fn has_i4(uses: FibreUse, d: &FibreDerivs) -> bool {
     matches!(uses, FibreUse::I4 | FibreUse::Both) && (d.d4 != 0.0 || d.d44 != 0.0 || d.d45 != 0.0)
 }
 
+/// The Hessian of [`point_kernel`]: closed form (filtered eigenvalues
+/// `[along, across, null]` and n, eqs. P3–P5) or a full d² × d² matrix.
+pub(crate) enum Hess<const D: usize, const N: usize> {
+    Closed([f64; 3], [f64; D]),
+    Full(SMatrix<f64, N, N>),
+}
+
+impl<const D: usize, const N: usize> Hess<D, N> {
+    /// The d² × d² matrix.
+    pub(crate) fn matrix(&self, a: &SVector<f64, D>) -> SMatrix<f64, N, N> {
+        match self {
+            Hess::Closed(f, n) => closed_hessian::<D, N>(*f, a, n),
+            Hess::Full(h) => *h,
+        }
+    }
+}
+
 /// Result of [`point_kernel`]: ψ, vec(∂ψ/∂F), ∂²ψ/∂f², path.
-pub(crate) type PointOut<const N: usize> = (f64, SVector<f64, N>, SMatrix<f64, N, N>, FibrePath);
+pub(crate) type PointOut<const D: usize, const N: usize> =
+    (f64, SVector<f64, N>, Hess<D, N>, FibrePath);
 
 /// ψ, gradient and (if asked) Hessian at F; `project` is the d² × d²
 /// numeric projection (monomorphised per size by the caller).
@@ -131,12 +148,12 @@ pub(crate) fn point_kernel<const D: usize, const N: usize, E: FibreEnergy<D> + ?
     filter: Filter,
     want_hessian: bool,
     project: impl Fn(&SMatrix<f64, N, N>, Filter) -> SMatrix<f64, N, N>,
-) -> PointOut<N> {
+) -> PointOut<D, N> {
     let degenerate = |psi: f64| {
         (
             psi,
             SVector::zeros(),
-            SMatrix::zeros(),
+            Hess::Full(SMatrix::zeros()),
             FibrePath::Degenerate,
         )
     };
@@ -156,20 +173,20 @@ pub(crate) fn point_kernel<const D: usize, const N: usize, E: FibreEnergy<D> + ?
         None => {
             let grad = g5.map(|x| mul0(d.d5, x));
             let hess = if want_hessian {
-                closed_hessian::<D, N>(i5_eigenvalues(&d, i5), a, &fa, filter)
+                Hess::Closed(i5_eigenvalues(&d, i5).map(|l| filter.apply(l)), unit(&fa))
             } else {
-                SMatrix::zeros()
+                Hess::Full(SMatrix::zeros())
             };
             (d.psi, grad, hess, FibrePath::ClosedI5)
         }
         Some(fr) => {
             let g4: SVector<f64, N> = fr.grad4();
             let grad = SVector::from_fn(|k, _| mul0(d.d4, g4[k]) + mul0(d.d5, g5[k]));
-            let hess = if want_hessian {
+            let hess = Hess::Full(if want_hessian {
                 project(&raw_hessian(&fr, a, &d, &g4, &g5), filter)
             } else {
                 SMatrix::zeros()
-            };
+            });
             (d.psi, grad, hess, FibrePath::Numeric)
         }
     }
