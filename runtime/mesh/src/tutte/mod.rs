@@ -23,11 +23,8 @@
 //! [`tutte_embedding_report`] returns the map with the list of flipped
 //! triangles instead.
 
+mod linear;
 mod weights;
-
-use faer::linalg::solvers::Solve;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
 
 use crate::error::{TutteError, ValidationError};
 use crate::geometry::{norm, signed_area_uv, sub};
@@ -163,7 +160,8 @@ fn place_on_circle(
     Ok(())
 }
 
-/// Assemble `L_II u_I = −L_IB u_B` and solve for both coordinates.
+/// Assemble `L_II u_I = −L_IB u_B` and solve for both coordinates
+/// (see [`linear`]).
 fn solve_interior(
     mesh: &TriMesh,
     weights: TutteWeights,
@@ -177,45 +175,25 @@ fn solve_interior(
         weights::triangle_contributions(weights, *t, p, &mut contrib)
             .map_err(|edge| TutteError::BadWeight { weights, edge })?;
     }
-    let mut triplets = Vec::with_capacity(contrib.len() * 2);
-    let mut rhs = Mat::<f64>::zeros(m, 2);
-    for &(i, j, w) in &contrib {
-        let r = interior[i];
-        if r == usize::MAX {
-            continue; // boundary rows are fixed
-        }
-        triplets.push(Triplet::new(r, r, w));
-        let c = interior[j];
-        if c == usize::MAX {
-            rhs[(r, 0)] += w * uv[j][0];
-            rhs[(r, 1)] += w * uv[j][1];
-        } else {
-            triplets.push(Triplet::new(r, c, -w));
-        }
-    }
-    let a = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &triplets).map_err(|e| {
-        TutteError::Solve {
-            message: format!("building the sparse matrix: {e:?}"),
-        }
-    })?;
+    let mut sys = linear::assemble(&contrib, interior, uv, m)?;
+    drop(contrib);
     let symmetric = matches!(weights, TutteWeights::Uniform | TutteWeights::Cotangent);
     let solved = if symmetric {
-        match a.sp_cholesky(Side::Lower) {
-            Ok(llt) => {
-                llt.solve_in_place(rhs.as_mut());
-                true
+        let mut pos = vec![[0.0; 3]; m];
+        for (v, &r) in interior.iter().enumerate() {
+            if r != usize::MAX {
+                pos[r] = mesh.positions[v];
             }
-            Err(_) => false, // not positive definite (cotangent): use LU
         }
+        // not positive definite (cotangent): use LU
+        linear::solve_cholesky(&mut sys, &pos)?
     } else {
         false
     };
     if !solved {
-        let lu = a.sp_lu().map_err(|e| TutteError::Solve {
-            message: format!("sparse LU: {e}"),
-        })?;
-        lu.solve_in_place(rhs.as_mut());
+        linear::solve_lu(&mut sys)?;
     }
+    let rhs = &sys.rhs;
     for (v, &r) in interior.iter().enumerate() {
         if r != usize::MAX {
             let (x, y) = (rhs[(r, 0)], rhs[(r, 1)]);

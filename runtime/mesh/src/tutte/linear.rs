@@ -1,0 +1,302 @@
+//! The interior system of the Tutte embedding, `L_II u_I = −L_IB u_B`
+//! (two right-hand sides, u and v), assembled and solved.
+//!
+//! * **Assembly** straight into compressed columns: a counting sort of the
+//!   per-triangle contributions by column, then each (short) column sorted by
+//!   row with duplicates summed — linear in the contributions, no global
+//!   triplet sort.
+//! * **Symmetric weights** (uniform, cotangent): sparse Cholesky (faer,
+//!   supernodal) under a **geometric nested dissection** ordering
+//!   ([`nested_dissection`]): the interior vertices are split at the median
+//!   of the longest axis of their bounding box, the vertices of the second
+//!   half adjacent to the first form the separator, numbered last, and both
+//!   halves are dissected recursively (George 1973; for a planar mesh the
+//!   separators have O(√n) vertices, giving O(n log n) fill and O(n^{3/2})
+//!   flops). A system that is not positive definite (cotangent weights with
+//!   obtuse angles) falls back to LU.
+//! * **Mean-value weights** (not symmetric): sparse LU (faer).
+
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::linalg::solvers::Solve;
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LltRef, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::sparse::{SparseColMat, SymbolicSparseColMat};
+use faer::{Conj, Mat, Par, Side};
+
+use super::weights::Contribution;
+use crate::error::TutteError;
+
+/// Vertices per leaf of the dissection (ordered as they come).
+const LEAF: usize = 64;
+
+/// The interior matrix (compressed columns, sorted rows, no duplicates) and
+/// the right-hand sides, one row per interior unknown.
+pub(super) struct System {
+    pub a: SparseColMat<usize, f64>,
+    pub rhs: Mat<f64>,
+}
+
+fn solve_error(message: String) -> TutteError {
+    TutteError::Solve { message }
+}
+
+/// Assemble `L_II` and `−L_IB u_B` from the triangles' contributions
+/// `(i, j, w)` (row i gains +w on its diagonal and −w at column j).
+/// `interior[v]` is v's unknown or `usize::MAX` on the boundary.
+pub(super) fn assemble(
+    contrib: &[Contribution],
+    interior: &[usize],
+    uv: &[[f64; 2]],
+    m: usize,
+) -> Result<System, TutteError> {
+    let mut rhs = Mat::<f64>::zeros(m, 2);
+    let mut count = vec![0usize; m + 1];
+    for &(i, j, _) in contrib {
+        let r = interior[i];
+        if r != usize::MAX {
+            count[r + 1] += 1;
+            if interior[j] != usize::MAX {
+                count[interior[j] + 1] += 1;
+            }
+        }
+    }
+    for c in 0..m {
+        count[c + 1] += count[c];
+    }
+    let mut next = count.clone();
+    let mut entries = vec![(0usize, 0.0f64); count[m]];
+    let mut put = |col: usize, row: usize, w: f64| {
+        entries[next[col]] = (row, w);
+        next[col] += 1;
+    };
+    for &(i, j, w) in contrib {
+        let r = interior[i];
+        if r == usize::MAX {
+            continue; // boundary rows are fixed
+        }
+        put(r, r, w);
+        match interior[j] {
+            usize::MAX => {
+                rhs[(r, 0)] += w * uv[j][0];
+                rhs[(r, 1)] += w * uv[j][1];
+            }
+            c => put(c, r, -w),
+        }
+    }
+    let (col_ptr, row_idx, values) = compress(&count, &mut entries);
+    let sym = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
+    Ok(System {
+        a: SparseColMat::new(sym, values),
+        rhs,
+    })
+}
+
+/// Sort each column's `(row, value)` entries by row and sum duplicates.
+fn compress(start: &[usize], entries: &mut [(usize, f64)]) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
+    let m = start.len() - 1;
+    let mut col_ptr = Vec::with_capacity(m + 1);
+    let mut row_idx = Vec::with_capacity(entries.len());
+    let mut values: Vec<f64> = Vec::with_capacity(entries.len());
+    col_ptr.push(0);
+    for c in 0..m {
+        let col = &mut entries[start[c]..start[c + 1]];
+        col.sort_unstable_by_key(|e| e.0);
+        let first = row_idx.len();
+        for &(r, w) in col.iter() {
+            if row_idx.len() > first && row_idx.last() == Some(&r) {
+                *values.last_mut().unwrap_or(&mut 0.0) += w;
+            } else {
+                row_idx.push(r);
+                values.push(w);
+            }
+        }
+        col_ptr.push(row_idx.len());
+    }
+    (col_ptr, row_idx, values)
+}
+
+/// Geometric nested dissection of the graph of `a` (symmetric pattern) with
+/// vertex coordinates `pos`: `perm[new] = old` (see the module docs).
+pub(super) fn nested_dissection(a: &SparseColMat<usize, f64>, pos: &[[f64; 3]]) -> Vec<usize> {
+    let n = pos.len();
+    let mut verts: Vec<usize> = (0..n).collect();
+    let mut side = vec![0u8; n];
+    let mut perm = Vec::with_capacity(n);
+    dissect(a, pos, &mut verts, &mut side, &mut perm);
+    perm
+}
+
+/// Order `verts`: first half, rest of the second half, separator.
+fn dissect(
+    a: &SparseColMat<usize, f64>,
+    pos: &[[f64; 3]],
+    verts: &mut [usize],
+    side: &mut [u8],
+    perm: &mut Vec<usize>,
+) {
+    if verts.len() <= LEAF {
+        perm.extend_from_slice(verts);
+        return;
+    }
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for &v in verts.iter() {
+        for k in 0..3 {
+            lo[k] = lo[k].min(pos[v][k]);
+            hi[k] = hi[k].max(pos[v][k]);
+        }
+    }
+    let axis = (0..3)
+        .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
+        .unwrap_or(0);
+    let mid = verts.len() / 2;
+    verts.select_nth_unstable_by(mid, |&x, &y| pos[x][axis].total_cmp(&pos[y][axis]));
+    let (first, second) = verts.split_at_mut(mid);
+    first.iter().for_each(|&v| side[v] = 1);
+    // second half: interior vertices to the front, the separator to the back
+    let mut k = 0;
+    for i in 0..second.len() {
+        let v = second[i];
+        let touches = a.symbolic().row_idx_of_col(v).any(|u| side[u] == 1);
+        if !touches {
+            second.swap(i, k);
+            k += 1;
+        }
+    }
+    first.iter().for_each(|&v| side[v] = 0);
+    let (rest, separator) = second.split_at_mut(k);
+    dissect(a, pos, first, side, perm);
+    dissect(a, pos, rest, side, perm);
+    perm.extend_from_slice(separator);
+}
+
+/// Solve the symmetric system in place by Cholesky under the dissection
+/// ordering; `Ok(false)` when it is not positive definite.
+pub(super) fn solve_cholesky(sys: &mut System, pos: &[[f64; 3]]) -> Result<bool, TutteError> {
+    let m = sys.a.nrows();
+    let perm = nested_dissection(&sys.a, pos);
+    let mut inv = vec![0usize; m];
+    for (new, &old) in perm.iter().enumerate() {
+        inv[old] = new;
+    }
+    let ordering = SymmetricOrdering::Custom(PermRef::new_checked(&perm, &inv, m));
+    let symbolic = factorize_symbolic_cholesky(
+        sys.a.symbolic(),
+        Side::Lower,
+        ordering,
+        CholeskySymbolicParams::default(),
+    )
+    .map_err(|e| solve_error(format!("symbolic Cholesky: {e:?}")))?;
+    // sequential: faer's parallel supernodal factorisation is no faster on
+    // this 2D system with 2 cores (measured), and the caller may run threads
+    let par = Par::Seq;
+    let req = StackReq::any_of(&[
+        symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+        symbolic.solve_in_place_scratch::<f64>(2, par),
+    ]);
+    let mut mem = MemBuffer::try_new(req)
+        .map_err(|_| solve_error("out of memory for the Cholesky scratch".into()))?;
+    let mut l_values = vec![0.0; symbolic.len_val()];
+    let ok = symbolic
+        .factorize_numeric_llt::<f64>(
+            &mut l_values,
+            sys.a.as_ref(),
+            Side::Lower,
+            Default::default(),
+            par,
+            MemStack::new(&mut mem),
+            Default::default(),
+        )
+        .is_ok();
+    if ok {
+        LltRef::<'_, usize, f64>::new(&symbolic, &l_values).solve_in_place_with_conj(
+            Conj::No,
+            sys.rhs.as_mut(),
+            par,
+            MemStack::new(&mut mem),
+        );
+    }
+    Ok(ok)
+}
+
+/// Solve the (possibly non-symmetric) system in place by sparse LU.
+pub(super) fn solve_lu(sys: &mut System) -> Result<(), TutteError> {
+    let lu = sys
+        .a
+        .sp_lu()
+        .map_err(|e| solve_error(format!("sparse LU: {e}")))?;
+    lu.solve_in_place(sys.rhs.as_mut());
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tutte::weights::triangle_contributions;
+    use crate::types::TutteWeights;
+
+    /// The interior system of a generated disk (boundary at its rest positions).
+    fn disk_system(rings: usize) -> (System, Vec<[f64; 3]>) {
+        let mesh = crate::disk_tri(rings, 1.0);
+        let n = mesh.positions.len();
+        let first_outer = n - 6 * rings;
+        let interior: Vec<usize> = (0..n)
+            .map(|v| if v < first_outer { v } else { usize::MAX })
+            .collect();
+        let uv: Vec<[f64; 2]> = mesh.positions.iter().map(|p| [p[0], p[1]]).collect();
+        let mut contrib = Vec::new();
+        for t in &mesh.triangles {
+            let p = t.map(|v| mesh.positions[v]);
+            triangle_contributions(TutteWeights::Uniform, *t, p, &mut contrib).unwrap();
+        }
+        let sys = assemble(&contrib, &interior, &uv, first_outer).unwrap();
+        (sys, mesh.positions[..first_outer].to_vec())
+    }
+
+    #[test]
+    fn dissection_is_a_permutation_with_small_separators() {
+        let (sys, pos) = disk_system(30);
+        let perm = nested_dissection(&sys.a, &pos);
+        let mut seen = vec![false; pos.len()];
+        for &v in &perm {
+            assert!(!seen[v], "vertex {v} ordered twice");
+            seen[v] = true;
+        }
+        assert!(seen.iter().all(|&s| s));
+        // the factor stays within 1.5× AMD's fill (measured: 1.26× here, 1.13×
+        // on the 1M-triangle disk, where skipping AMD's analysis pays)
+        let sym = |o| {
+            factorize_symbolic_cholesky(sys.a.symbolic(), Side::Lower, o, Default::default())
+                .unwrap()
+                .len_val()
+        };
+        let inv = {
+            let mut inv = vec![0; perm.len()];
+            perm.iter().enumerate().for_each(|(i, &p)| inv[p] = i);
+            inv
+        };
+        let nd = sym(SymmetricOrdering::Custom(PermRef::new_checked(
+            &perm,
+            &inv,
+            perm.len(),
+        )));
+        let amd = sym(SymmetricOrdering::Amd);
+        assert!(nd as f64 <= 1.5 * amd as f64, "fill {nd} vs AMD {amd}");
+    }
+
+    #[test]
+    fn cholesky_and_lu_agree() {
+        let (mut a, pos) = disk_system(20);
+        let (mut b, _) = disk_system(20);
+        assert!(solve_cholesky(&mut a, &pos).unwrap());
+        solve_lu(&mut b).unwrap();
+        for r in 0..pos.len() {
+            for c in 0..2 {
+                assert!((a.rhs[(r, c)] - b.rhs[(r, c)]).abs() < 1e-12);
+            }
+            // maximum principle: the interior stays inside the boundary's hull
+            assert!(a.rhs[(r, 0)].hypot(a.rhs[(r, 1)]) < 1.0);
+        }
+    }
+}
