@@ -13,53 +13,38 @@
 //! (up to rounding), the shift changes the step only by O(δ/λ_min) in the
 //! remaining directions and never creates a large null-space component.
 //! The same shifted values feed PCG.
+//!
+//! **Stale factors.** With Cholesky, a later Newton step may solve with CG
+//! preconditioned by the last numeric factor instead of factorising again
+//! ([`LinearSystem::solve_stale`], policy in [`reuse`]).
 
+pub mod auto;
 pub mod cholesky;
 pub mod pcg;
+pub mod reuse;
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::FemError;
 use crate::pattern::Pattern;
+pub use auto::{AutoLimits, SystemSize};
 use cholesky::{CholeskyFactor, FactorizeError};
 use pcg::{Pcg, PcgInfo};
+pub use reuse::FactorReuse;
 
 /// Which linear solver the Newton iteration uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum LinearSolver {
-    /// Cholesky when its factor is within [`AutoLimits`] (memory and
-    /// estimated flops per factorisation), PCG otherwise; decided from the
-    /// symbolic analysis, done once per pattern.
+    /// Cholesky when its factor fits in memory and its estimated cost per
+    /// Newton step is below PCG's ([`AutoLimits`], model in [`auto`]),
+    /// PCG otherwise; decided from the symbolic analysis, done once per
+    /// pattern.
     #[default]
     Auto,
     /// Sparse Cholesky (faer), symbolic once, numeric every step.
     Cholesky,
     /// Jacobi-preconditioned conjugate gradients (inexact Newton).
     Pcg,
-}
-
-/// When `Auto` prefers PCG over Cholesky.
-///
-/// Measured on 2 cores (see the `newton` benchmark): a factorisation runs at
-/// roughly 10 GFlop/s, so the default flop limit is about one second per
-/// Newton step. Well-conditioned 3D problems (Dirichlet handles) are
-/// usually faster with PCG well below that limit; ill-conditioned 2D
-/// problems (parameterisation, tiny elements) are much faster with Cholesky.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct AutoLimits {
-    /// Largest factor (values of L) in bytes.
-    pub max_factor_bytes: usize,
-    /// Largest estimated flop count of one numeric factorisation.
-    pub max_factor_flops: f64,
-}
-
-impl Default for AutoLimits {
-    fn default() -> Self {
-        AutoLimits {
-            max_factor_bytes: 2 << 30,
-            max_factor_flops: 1e10,
-        }
-    }
 }
 
 /// How a linear system was prepared for this Newton step.
@@ -87,6 +72,18 @@ pub struct SolveInfo {
     pub iterations: usize,
     /// ‖H d + g‖ / ‖g‖ as reported by PCG (0 for Cholesky).
     pub relative_residual: f64,
+    /// CG stopped on non-positive curvature (PCG only).
+    pub negative_curvature: bool,
+}
+
+impl SolveInfo {
+    fn from_pcg(info: PcgInfo) -> Self {
+        SolveInfo {
+            iterations: info.iterations,
+            relative_residual: info.relative_residual,
+            negative_curvature: info.negative_curvature,
+        }
+    }
 }
 
 enum Backend {
@@ -101,15 +98,31 @@ pub struct LinearSystem {
     analysis: Option<(usize, f64)>,
     /// Symbolic analyses whose factor was not kept (`Auto` chose PCG).
     discarded_analyses: usize,
+    /// The Cholesky factor holds a successful numeric factorisation.
+    factored: bool,
+    /// CG state for solves preconditioned by a stale factor (allocated on first use).
+    stale: Option<Box<Pcg>>,
 }
 
 impl LinearSystem {
-    /// Choose and set up the backend. `Auto` runs the symbolic analysis and
-    /// keeps Cholesky if the factor is within `limits`.
+    /// [`LinearSystem::for_dimension`] for 2D vertices (the dimension
+    /// only enters `Auto`'s estimate of PCG iterations).
     pub fn new(
         pattern: &Pattern,
         choice: LinearSolver,
         limits: AutoLimits,
+    ) -> Result<Self, FemError> {
+        Self::for_dimension(pattern, choice, limits, 2)
+    }
+
+    /// Choose and set up the backend for unknowns of `dim`-dimensional
+    /// vertices. `Auto` runs the symbolic analysis and keeps Cholesky if
+    /// [`AutoLimits::prefers_cholesky`].
+    pub fn for_dimension(
+        pattern: &Pattern,
+        choice: LinearSolver,
+        limits: AutoLimits,
+        dim: usize,
     ) -> Result<Self, FemError> {
         let pcg = || Backend::Pcg(Box::new(Pcg::new(pattern)));
         let mut discarded_analyses = 0;
@@ -123,7 +136,14 @@ impl LinearSystem {
             LinearSolver::Auto => match CholeskyFactor::analyze(pattern) {
                 Ok(f) => {
                     let a = (f.factor_bytes(), f.factor_flops());
-                    if a.0 <= limits.max_factor_bytes && a.1 <= limits.max_factor_flops {
+                    let size = SystemSize {
+                        unknowns: pattern.n(),
+                        nnz: pattern.nnz(),
+                        dim,
+                        factor_bytes: a.0,
+                        factor_flops: a.1,
+                    };
+                    if limits.prefers_cholesky(&size) {
                         (Backend::Cholesky(Box::new(f)), Some(a))
                     } else {
                         drop(f);
@@ -139,6 +159,8 @@ impl LinearSystem {
             backend,
             analysis,
             discarded_analyses,
+            factored: false,
+            stale: None,
         })
     }
 
@@ -188,13 +210,7 @@ impl LinearSystem {
         if n == 0 {
             return Ok(PrepareInfo::default());
         }
-        let mean_diag = {
-            let s: f64 = (0..n)
-                .map(|j| values[pattern.diag_slot(j)].abs())
-                .sum::<f64>()
-                / n as f64;
-            if s > 0.0 && s.is_finite() { s } else { 1.0 }
-        };
+        let mean_diag = mean_diagonal(pattern, values);
         let mut shift = base_shift.max(0.0) * mean_diag;
         let mut applied = 0.0;
         let apply = |values: &mut [f64], target: f64, applied: &mut f64| {
@@ -216,10 +232,12 @@ impl LinearSystem {
                 })
             }
             Backend::Cholesky(f) => {
+                self.factored = false;
                 for attempt in 1..=max_attempts.max(1) {
                     apply(values, shift, &mut applied);
                     match f.factorize(pattern, values) {
                         Ok(()) => {
+                            self.factored = true;
                             return Ok(PrepareInfo {
                                 shift,
                                 relative_shift: shift / mean_diag,
@@ -256,16 +274,119 @@ impl LinearSystem {
                 SolveInfo::default()
             }
             Backend::Pcg(p) => {
-                let PcgInfo {
-                    iterations,
-                    relative_residual,
-                    ..
-                } = p.solve(pattern, values, rhs, out, rel_tol, max_iters);
-                SolveInfo {
-                    iterations,
-                    relative_residual,
-                }
+                SolveInfo::from_pcg(p.solve(pattern, values, rhs, out, rel_tol, max_iters))
             }
+        }
+    }
+
+    /// Whether a numeric factor from an earlier [`LinearSystem::prepare`]
+    /// is available to precondition [`LinearSystem::solve_stale`].
+    pub fn has_factor(&self) -> bool {
+        self.factored && matches!(self.backend, Backend::Cholesky(_))
+    }
+
+    /// CG iterations a step may spend with the stale factor, eq. (4) of
+    /// [`reuse`], with the factorisation's work from `limits`' κ (0 when
+    /// there is no factor or reuse does not pay).
+    pub fn stale_budget(
+        &self,
+        pattern: &Pattern,
+        reuse: &FactorReuse,
+        limits: &AutoLimits,
+    ) -> usize {
+        let (Some(f), true) = (self.cholesky(), self.has_factor()) else {
+            return 0;
+        };
+        let (bytes, flops) = (f.factor_bytes(), f.factor_flops());
+        let (n, nnz) = (pattern.n() as f64, pattern.nnz() as f64);
+        let nnz_l = bytes as f64 / std::mem::size_of::<f64>() as f64;
+        let iteration = 4.0 * nnz_l + 4.0 * nnz - 2.0 * n + 8.0 * n;
+        reuse.budget(flops / limits.factor_speedup, iteration)
+    }
+
+    /// Forget the numeric factor for [`LinearSystem::solve_stale`] (the next
+    /// [`LinearSystem::prepare`] factorises again). Newton calls this at the
+    /// start of every solve: term data and handles may change between
+    /// solves, so a factor is only reused within the solve that made it.
+    pub fn forget_factor(&mut self) {
+        self.factored = false;
+    }
+
+    /// Shift the diagonal of `values` by `base_shift`·mean|diag| without
+    /// factorising (the step that [`LinearSystem::solve_stale`] solves).
+    pub fn shift_only(
+        &self,
+        pattern: &Pattern,
+        values: &mut [f64],
+        base_shift: f64,
+    ) -> PrepareInfo {
+        if pattern.n() == 0 {
+            return PrepareInfo::default();
+        }
+        let mean_diag = mean_diagonal(pattern, values);
+        let shift = base_shift.max(0.0) * mean_diag;
+        shift_diagonal(pattern, values, shift);
+        PrepareInfo {
+            shift,
+            relative_shift: shift / mean_diag,
+            factorizations: 0,
+        }
+    }
+
+    /// Undo a shift applied by [`LinearSystem::prepare`] or
+    /// [`LinearSystem::shift_only`] (before preparing the same step again).
+    pub fn unshift(&self, pattern: &Pattern, values: &mut [f64], shift: f64) {
+        shift_diagonal(pattern, values, -shift);
+    }
+
+    /// Solve (H + δI) d = rhs by CG preconditioned by the last numeric
+    /// factor, which may be of an earlier H (eq. (1) of [`reuse`]), to
+    /// relative residual `rel_tol` in at most `max_iters` iterations.
+    /// `None` when there is no factor (PCG backend or no factorisation yet).
+    pub fn solve_stale(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        rhs: &[f64],
+        out: &mut [f64],
+        rel_tol: f64,
+        max_iters: usize,
+    ) -> Option<SolveInfo> {
+        let Backend::Cholesky(f) = &mut self.backend else {
+            return None;
+        };
+        if !self.factored {
+            return None;
+        }
+        let cg = self
+            .stale
+            .get_or_insert_with(|| Box::new(Pcg::new(pattern)));
+        let info = cg.solve_preconditioned(values, rhs, out, rel_tol, max_iters, |r, z| {
+            z.copy_from_slice(r);
+            if !f.solve_in_place(z) {
+                z.fill(f64::NAN);
+            }
+        });
+        Some(SolveInfo::from_pcg(info))
+    }
+}
+
+/// Mean |diagonal| of `values` (1 when it is 0 or not finite): the unit of
+/// the relative shift.
+fn mean_diagonal(pattern: &Pattern, values: &[f64]) -> f64 {
+    let n = pattern.n();
+    let s: f64 = (0..n)
+        .map(|j| values[pattern.diag_slot(j)].abs())
+        .sum::<f64>()
+        / n.max(1) as f64;
+    if s > 0.0 && s.is_finite() { s } else { 1.0 }
+}
+
+/// values += delta·I on the diagonal.
+fn shift_diagonal(pattern: &Pattern, values: &mut [f64], delta: f64) {
+    if delta != 0.0 {
+        for j in 0..pattern.n() {
+            values[pattern.diag_slot(j)] += delta;
         }
     }
 }

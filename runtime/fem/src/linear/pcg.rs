@@ -85,8 +85,9 @@ impl Pcg {
     }
 
     /// Solve H x = b to ‖r‖ ≤ `rel_tol`·‖b‖ (or `max_iters`), x overwritten,
-    /// starting from 0. `values` must be positive on the diagonal (a
-    /// non-positive diagonal entry is preconditioned by 1).
+    /// starting from 0, preconditioned by M = diag(H). `values` must be
+    /// positive on the diagonal (a non-positive diagonal entry is
+    /// preconditioned by 1).
     pub fn solve(
         &mut self,
         pattern: &Pattern,
@@ -105,6 +106,28 @@ impl Pcg {
                 1.0
             };
         }
+        let inv_diag = std::mem::take(&mut self.inv_diag);
+        let info = self.solve_preconditioned(values, b, x, rel_tol, max_iters, |r, z| {
+            zip_mul(z, &inv_diag, r)
+        });
+        self.inv_diag = inv_diag;
+        info
+    }
+
+    /// CG as in [`Pcg::solve`] with any symmetric positive definite
+    /// preconditioner: `precond(r, z)` writes z = M⁻¹ r. With M⁻¹ a
+    /// Cholesky solve of an earlier Hessian (a *stale* factor) the
+    /// preconditioned matrix M⁻¹H is close to I and CG needs few iterations
+    /// while H has changed little (see [`super::reuse`]).
+    pub fn solve_preconditioned(
+        &mut self,
+        values: &[f64],
+        b: &[f64],
+        x: &mut [f64],
+        rel_tol: f64,
+        max_iters: usize,
+        mut precond: impl FnMut(&[f64], &mut [f64]),
+    ) -> PcgInfo {
         x.fill(0.0);
         self.r.copy_from_slice(b);
         let bnorm = dot(b, b, &mut self.partials).sqrt();
@@ -115,7 +138,7 @@ impl Pcg {
                 negative_curvature: false,
             };
         }
-        zip_mul(&mut self.z, &self.inv_diag, &self.r);
+        precond(&self.r, &mut self.z);
         self.p.copy_from_slice(&self.z);
         let mut rz = dot(&self.r, &self.z, &mut self.partials);
         let mut rnorm = bnorm;
@@ -124,7 +147,7 @@ impl Pcg {
         while it < max_iters && rnorm > rel_tol * bnorm {
             sym_matvec(&self.row_ptr, &self.row_ent, values, &self.p, &mut self.q);
             let pq = dot(&self.p, &self.q, &mut self.partials);
-            if pq <= 0.0 || !pq.is_finite() {
+            if pq <= 0.0 || !pq.is_finite() || !rz.is_finite() || rz <= 0.0 {
                 negative = true;
                 if it == 0 {
                     // no curvature information at all: preconditioned steepest descent
@@ -137,7 +160,7 @@ impl Pcg {
             axpy(&mut self.r, -alpha, &self.q);
             rnorm = dot(&self.r, &self.r, &mut self.partials).sqrt();
             it += 1;
-            zip_mul(&mut self.z, &self.inv_diag, &self.r);
+            precond(&self.r, &mut self.z);
             let rz_new = dot(&self.r, &self.z, &mut self.partials);
             let beta = rz_new / rz;
             rz = rz_new;

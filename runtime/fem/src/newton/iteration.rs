@@ -76,6 +76,8 @@ struct Assembled {
 struct Direction {
     prep: PrepareInfo,
     solve: SolveInfo,
+    /// Solved with CG preconditioned by a stale factor (no factorisation).
+    reused: bool,
     /// ∇Eᵀd < 0.
     slope: f64,
     t_factor: f64,
@@ -104,8 +106,20 @@ impl<const D: usize> NewtonSolver<D> {
         if s.iter >= s.p.max_iters {
             return Err(NewtonStatus::MaxIterations);
         }
-        let dir = self.direction(s, &a)?;
-        let step = self.line_search(x, s, a.energy, dir.slope)?;
+        let mut dir = self.direction(s, &a)?;
+        let step = match self.line_search(x, s, a.energy, dir.slope) {
+            Ok(step) => step,
+            // a reused factor's direction failed: retry once with a fresh factor
+            Err(_) if dir.reused => {
+                let pattern = self.assembler.pattern();
+                self.linear
+                    .unshift(pattern, &mut self.values, dir.prep.shift);
+                let cg = dir.solve.iterations;
+                dir = self.fresh_direction(s, &a, cg, dir.t_solve)?;
+                self.line_search(x, s, a.energy, dir.slope)?
+            }
+            Err(status) => return Err(status),
+        };
         let (rho, t_rho) = self.trust_ratio(x, s, &a, &dir, &step);
         // accept: x ← x + α d (the accepted α was the last one evaluated into xt)
         x.copy_from_slice(&self.xt);
@@ -170,9 +184,63 @@ impl<const D: usize> NewtonSolver<D> {
         })
     }
 
-    /// Step 3: solve (H + δI) d = −∇E; a raw Hessian starts from a tenth of the
-    /// last shift that made a raw Hessian factorable.
+    /// Step 3: solve (H + δI) d = −∇E, first with the stale factor when the
+    /// reuse policy allows it (see [`crate::linear::reuse`]), else with a
+    /// fresh factorisation (or PCG).
     fn direction(&mut self, s: &mut SolveState, a: &Assembled) -> Result<Direction, NewtonStatus> {
+        let reuse = s.p.factor_reuse;
+        let pattern = self.assembler.pattern();
+        let budget = self.linear.stale_budget(pattern, &reuse, &s.p.auto_limits);
+        if budget == 0 || a.used_filter == Filter::None {
+            return self.fresh_direction(s, a, 0, 0.0);
+        }
+        let t = Instant::now();
+        let prep = self
+            .linear
+            .shift_only(pattern, &mut self.values, s.null_shift);
+        self.rhs.iter_mut().zip(&self.g).for_each(|(r, g)| *r = -g);
+        let target = reuse.target(forcing(s, a));
+        let solve = self.linear.solve_stale(
+            pattern,
+            &self.values,
+            &self.rhs,
+            &mut self.d,
+            target,
+            budget,
+        );
+        let t_solve = t.elapsed().as_secs_f64();
+        s.times.solve += t_solve;
+        let Some(solve) = solve else {
+            self.linear.unshift(pattern, &mut self.values, prep.shift);
+            return self.fresh_direction(s, a, 0, t_solve);
+        };
+        let slope = dot(&self.g, &self.d, &mut self.partials);
+        let converged = !solve.negative_curvature && solve.relative_residual <= target;
+        if converged && slope.is_finite() && slope < 0.0 {
+            return Ok(Direction {
+                prep,
+                solve,
+                reused: true,
+                slope,
+                t_factor: 0.0,
+                t_solve,
+            });
+        }
+        self.linear.unshift(pattern, &mut self.values, prep.shift);
+        self.fresh_direction(s, a, solve.iterations, t_solve)
+    }
+
+    /// Step 3 with a new factorisation (or PCG); `cg_before`/`t_before`:
+    /// CG iterations and seconds of a stale-factor attempt this step gave up.
+    /// A raw Hessian starts from a tenth of the last shift that made a raw
+    /// Hessian factorable.
+    fn fresh_direction(
+        &mut self,
+        s: &mut SolveState,
+        a: &Assembled,
+        cg_before: usize,
+        t_before: f64,
+    ) -> Result<Direction, NewtonStatus> {
         let raw = a.used_filter == Filter::None;
         let base_shift = if raw {
             s.null_shift.max(0.1 * s.raw_shift)
@@ -194,17 +262,15 @@ impl<const D: usize> NewtonSolver<D> {
         }
         let t2 = Instant::now();
         self.rhs.iter_mut().zip(&self.g).for_each(|(r, g)| *r = -g);
-        let eta = (a.grad_inf / a.g0)
-            .sqrt()
-            .clamp(s.p.pcg_rel_min, s.p.pcg_rel_max);
-        let solve = self.linear.solve(
+        let mut solve = self.linear.solve(
             self.assembler.pattern(),
             &self.values,
             &self.rhs,
             &mut self.d,
-            eta,
+            forcing(s, a),
             s.p.pcg_max_iters,
         );
+        solve.iterations += cg_before;
         let t_solve = t2.elapsed().as_secs_f64();
         s.times.solve += t_solve;
         let slope = dot(&self.g, &self.d, &mut self.partials);
@@ -214,9 +280,10 @@ impl<const D: usize> NewtonSolver<D> {
         Ok(Direction {
             prep,
             solve,
+            reused: false,
             slope,
             t_factor,
-            t_solve,
+            t_solve: t_solve + t_before,
         })
     }
 
@@ -321,6 +388,7 @@ impl<const D: usize> NewtonSolver<D> {
             shift: dir.prep.shift,
             factorizations: dir.prep.factorizations,
             cg_iterations: dir.solve.iterations,
+            reused_factor: dir.reused,
             line_search_evals: step.acc.evals,
             noise_limited: step.acc.noise_limited,
             t_assembly: a.t_assembly + t_rho,
@@ -341,4 +409,12 @@ impl<const D: usize> NewtonSolver<D> {
             Err(_) => (self.assembler.energy(&self.terms, x, scale), f64::INFINITY),
         }
     }
+}
+
+/// The inexact-Newton forcing term η_k = clamp(√(‖∇E_k‖∞/‖∇E₀‖∞),
+/// `pcg_rel_min`, `pcg_rel_max`) (module docs, step 3).
+fn forcing(s: &SolveState, a: &Assembled) -> f64 {
+    (a.grad_inf / a.g0)
+        .sqrt()
+        .clamp(s.p.pcg_rel_min, s.p.pcg_rel_max)
 }

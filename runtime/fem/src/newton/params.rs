@@ -4,7 +4,7 @@ use ecc_runtime::filter::Filter;
 
 use serde::{Deserialize, Serialize};
 
-use crate::linear::{AutoLimits, LinearSolver};
+use crate::linear::{AutoLimits, FactorReuse, LinearSolver};
 
 /// Per-iteration choice of the eigenvalue filter.
 ///
@@ -75,6 +75,11 @@ pub struct NewtonParams {
     pub linear_solver: LinearSolver,
     /// When `Auto` switches to PCG.
     pub auto_limits: AutoLimits,
+    /// With Cholesky: when a later step solves by CG preconditioned by the
+    /// last (stale) factor instead of factorising again
+    /// (default [`FactorReuse::OFF`], factorise every step, by measurement;
+    /// [`FactorReuse::STALE_CG`] opts in).
+    pub factor_reuse: FactorReuse,
     /// The solver minimises `energy_scale`·E; energies and gradients reported
     /// and tested are scaled too (1/Σ|q| gives the area-weighted mean).
     pub energy_scale: f64,
@@ -111,6 +116,7 @@ impl Default for NewtonParams {
             adaptive_threshold: 0.01,
             linear_solver: LinearSolver::Auto,
             auto_limits: AutoLimits::default(),
+            factor_reuse: FactorReuse::default(),
             energy_scale: 1.0,
             armijo_c1: 1e-4,
             backtrack: 0.5,

@@ -81,8 +81,13 @@ pub struct IterationRecord {
     pub shift: f64,
     /// Numeric factorisations this step needed (> 1: the shift was raised).
     pub factorizations: usize,
-    /// PCG iterations (0 with Cholesky).
+    /// CG iterations: PCG's, or those preconditioned by a stale Cholesky
+    /// factor (including an attempt that fell back to factorising).
     pub cg_iterations: usize,
+    /// The direction came from CG preconditioned by a stale factor (no
+    /// factorisation this step; see `linear::reuse`).
+    #[serde(default)]
+    pub reused_factor: bool,
     /// Energy evaluations in the line search.
     pub line_search_evals: usize,
     /// Step accepted without Armijo decrease because the predicted decrease

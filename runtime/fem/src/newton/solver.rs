@@ -77,7 +77,8 @@ impl<const D: usize> NewtonSolver<D> {
         let nv = dofs.n_vertices();
         let assembler = Assembler::new(&terms, dofs)?;
         let pattern = assembler.pattern();
-        let linear = LinearSystem::new(pattern, params.linear_solver, params.auto_limits)?;
+        let linear =
+            LinearSystem::for_dimension(pattern, params.linear_solver, params.auto_limits, D)?;
         let n = pattern.n();
         let nnz = pattern.nnz();
         Ok(NewtonSolver {
@@ -99,7 +100,8 @@ impl<const D: usize> NewtonSolver<D> {
     /// Rebuild the linear backend (e.g. switch Cholesky ↔ PCG).
     pub fn set_linear_solver(&mut self, choice: LinearSolver) -> Result<(), FemError> {
         self.params.linear_solver = choice;
-        let new = LinearSystem::new(self.assembler.pattern(), choice, self.params.auto_limits)?;
+        let limits = self.params.auto_limits;
+        let new = LinearSystem::for_dimension(self.assembler.pattern(), choice, limits, D)?;
         let old = std::mem::replace(&mut self.linear, new);
         self.earlier.0 += old.symbolic_analyses();
         self.earlier.1 += old.cholesky().map_or(0, |c| c.numeric_factorizations());
@@ -208,6 +210,7 @@ impl<const D: usize> NewtonSolver<D> {
         let t_start = Instant::now();
         self.assembler.reset_timings();
         let mut state = SolveState::new(self.params.clone(), self.dofs().n_fixed());
+        self.linear.forget_factor();
         let status = loop {
             if let Err(status) = self.iteration(x, &mut state, &mut callback) {
                 break status;

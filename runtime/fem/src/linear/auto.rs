@@ -1,0 +1,207 @@
+//! How [`super::LinearSolver::Auto`] chooses between Cholesky and PCG: by
+//! memory and by the estimated cost of one Newton step, from the symbolic
+//! analysis (never by element count).
+//!
+//! Work is counted in *matvec flops*: one flop of a sparse, memory-bound
+//! product. Per Newton step, for n unknowns, nnz entries in the upper
+//! triangle of H, a factor with nnz(L) values and F = Σ_j c_j² flops
+//! (`CholeskyFactor::factor_flops`), and vertices of dimension d:
+//!
+//!   W_chol = F / κ + 4·nnz(L)                                          (1)
+//!   W_pcg  = π · k_d(n) · (4·nnz − 2n + 10n),  k_d(n) = c_d·(n/d)^{1/d}  (2)
+//!
+//! (1) is one numeric factorisation, whose supernodal dense kernels run κ
+//! times faster per flop than a sparse product, plus the two triangular
+//! solves (an upper bound: with factor reuse most steps do not factorise).
+//! (2) is k_d(n) Jacobi-PCG iterations, each a symmetric product with H
+//! (2 flops per stored off-diagonal entry, both triangles) and five vector
+//! operations; π is the extra Newton iterations an inexact PCG solve costs
+//! compared with an exact one. The iteration count grows like √cond(H) ∝
+//! 1/h ∝ (n/d)^{1/d} for a stiffness-like matrix on a mesh of n/d
+//! vertices, so in 2D W_pcg ∝ n^{1.5}, the same order as a nested-dissection
+//! factorisation, and the constants decide; in 3D W_pcg ∝ n^{4/3} while
+//! F ∝ n², so PCG wins on large enough tet meshes.
+//!
+//! The constants are measured (docs/benchmarks/reuse.md, 2 threads):
+//! κ = 2.5–8 (camelhead F = 0.285 GFlop in ≈ 0.1 s, the 135k-triangle disk
+//! 4.1 GFlop in 0.45 s, against Jacobi-PCG iterations at ≈ 1.2 GFlop/s;
+//! default 5); c₂ = 0.4–1.8 (camelhead SD: 193 CG iterations per Newton
+//! step at 11.4k vertices, a 22k-triangle disk: 42 at 11k; default 1);
+//! c₃ = 5–9 (hand.mesh ARAP/SNH: 85–143 at 4.4k vertices; default 6);
+//! π = 1–2.8 (camelhead 89 PCG against 32 Cholesky iterations, the disk and
+//! hand.mesh 1–1.2; default 1.5). With these, W_pcg/W_chol is 2.1 on
+//! camelhead, 1.2 on hand.mesh and 2.3 on the 1M-triangle disk (F = 84
+//! GFlop, above the old fixed 1e10-flop limit that chose PCG there), where
+//! Cholesky was measured 3.3×, 1.1× and 3.3× faster; on the 22k-triangle
+//! disk (W ratio 2.5) PCG was 3.5× faster: the model does not see that
+//! a near-optimal start needs few CG iterations.
+//!
+//! `Auto` keeps Cholesky when its factor fits in `max_factor_bytes`, needs at
+//! most `max_factor_flops`, and W_chol ≤ W_pcg.
+
+use serde::{Deserialize, Serialize};
+
+/// When `Auto` prefers PCG over Cholesky (module docs, eqs. (1)–(2)).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AutoLimits {
+    /// Largest factor (values of L) in bytes: PCG above this, whatever the cost.
+    pub max_factor_bytes: usize,
+    /// Largest flop count of one numeric factorisation: PCG above this,
+    /// whatever the cost (default ∞: the cost model decides).
+    pub max_factor_flops: f64,
+    /// κ: flops of a factorisation per matvec flop of the same time.
+    pub factor_speedup: f64,
+    /// c_2: Jacobi-PCG iterations per Newton step over √(vertices), 2D.
+    pub cg_per_root_2d: f64,
+    /// c_3: Jacobi-PCG iterations per Newton step over ∛(vertices), 3D.
+    pub cg_per_root_3d: f64,
+    /// π: Newton iterations with PCG over those with Cholesky.
+    pub pcg_newton_penalty: f64,
+}
+
+impl Default for AutoLimits {
+    fn default() -> Self {
+        AutoLimits {
+            max_factor_bytes: 2 << 30,
+            max_factor_flops: f64::INFINITY,
+            factor_speedup: 5.0,
+            cg_per_root_2d: 1.0,
+            cg_per_root_3d: 6.0,
+            pcg_newton_penalty: 1.5,
+        }
+    }
+}
+
+/// What the cost model needs to know about one system.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SystemSize {
+    /// Unknowns n.
+    pub unknowns: usize,
+    /// Stored entries of the upper triangle of H (diagonal included).
+    pub nnz: usize,
+    /// Coordinates per vertex d (2 or 3).
+    pub dim: usize,
+    /// Bytes of the Cholesky factor's values.
+    pub factor_bytes: usize,
+    /// Flops of one numeric factorisation, F.
+    pub factor_flops: f64,
+}
+
+impl AutoLimits {
+    /// W_chol of eq. (1), in matvec flops.
+    pub fn cholesky_work(&self, s: &SystemSize) -> f64 {
+        let nnz_l = s.factor_bytes as f64 / std::mem::size_of::<f64>() as f64;
+        s.factor_flops / self.factor_speedup + 4.0 * nnz_l
+    }
+
+    /// W_pcg of eq. (2), in matvec flops.
+    pub fn pcg_work(&self, s: &SystemSize) -> f64 {
+        let n = s.unknowns as f64;
+        let d = s.dim.clamp(2, 3) as f64;
+        let c = if s.dim >= 3 {
+            self.cg_per_root_3d
+        } else {
+            self.cg_per_root_2d
+        };
+        let iterations = c * (n / d).powf(1.0 / d);
+        let per_iteration = 4.0 * s.nnz as f64 - 2.0 * n + 10.0 * n;
+        self.pcg_newton_penalty * iterations.max(1.0) * per_iteration
+    }
+
+    /// Whether `Auto` keeps Cholesky for a system of this size.
+    pub fn prefers_cholesky(&self, s: &SystemSize) -> bool {
+        s.factor_bytes <= self.max_factor_bytes
+            && s.factor_flops <= self.max_factor_flops
+            && self.cholesky_work(s) <= self.pcg_work(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dofs::DofMap;
+    use crate::linear::{LinearSolver, LinearSystem};
+    use crate::pattern::{StencilSet, build};
+
+    /// Sizes measured on the report's meshes (docs/benchmarks/reuse.md),
+    /// where Cholesky was the faster solver: camelhead SD (PCG 3.3× slower),
+    /// hand.mesh ARAP/SNH (PCG 1.1× slower).
+    #[test]
+    fn the_measured_meshes_keep_cholesky() {
+        let limits = AutoLimits::default();
+        let camelhead = SystemSize {
+            unknowns: 22_762,
+            nnz: 170_479,
+            dim: 2,
+            factor_bytes: 15_900_000,
+            factor_flops: 0.285e9,
+        };
+        let hand = SystemSize {
+            unknowns: 13_278,
+            nnz: 255_039,
+            dim: 3,
+            factor_bytes: 20_300_000,
+            factor_flops: 0.620e9,
+        };
+        for s in [camelhead, hand] {
+            assert!(limits.prefers_cholesky(&s), "{s:?}");
+        }
+    }
+
+    /// A large 3D system whose factor needs far more work than CG (F ∝ n²
+    /// against n^{4/3}) goes to PCG; a factor beyond the byte limit too.
+    #[test]
+    fn pcg_where_the_factor_costs_too_much_or_does_not_fit() {
+        let limits = AutoLimits::default();
+        let big_3d = SystemSize {
+            unknowns: 3_000_000,
+            nnz: 60_000_000,
+            dim: 3,
+            factor_bytes: 1 << 30,
+            factor_flops: 1e14,
+        };
+        assert!(!limits.prefers_cholesky(&big_3d));
+        let huge = SystemSize {
+            factor_bytes: 4 << 30,
+            factor_flops: 1.0,
+            ..big_3d
+        };
+        assert!(!limits.prefers_cholesky(&huge));
+    }
+
+    /// The 2D disk, where Jacobi PCG is the trap (issue #11: 42 Newton
+    /// iterations, 181.6 s against 11 and 54.5 s with Cholesky on 1M
+    /// triangles): `Auto` keeps Cholesky on a real disk pattern, and the
+    /// model prefers it at the 1M size (W_pcg ≈ 2.3·W_chol), whose factor
+    /// exceeds the old 1e10-flop limit that chose PCG.
+    #[test]
+    fn auto_keeps_cholesky_on_a_2d_disk() {
+        let mesh = ecc_mesh::disk_tri(30, 1.0);
+        let tris: Vec<usize> = mesh.triangles.iter().flatten().copied().collect();
+        let dofs = DofMap::all_free(mesh.positions.len(), 2).unwrap();
+        let (pattern, _) = build(
+            &[StencilSet {
+                name: "tri",
+                arity: 3,
+                stencils: &tris,
+            }],
+            &dofs,
+        )
+        .unwrap();
+        let sys =
+            LinearSystem::for_dimension(&pattern, LinearSolver::Auto, AutoLimits::default(), 2)
+                .unwrap();
+        assert_eq!(sys.kind(), LinearSolver::Cholesky);
+        // the 1M-triangle bumpy disk as measured (disk:409)
+        let disk_1m = SystemSize {
+            unknowns: 1_006_142,
+            nnz: 7_536_237,
+            dim: 2,
+            factor_bytes: 1_088_400_000,
+            factor_flops: 84.395e9,
+        };
+        let limits = AutoLimits::default();
+        assert!(disk_1m.factor_flops > 1e10, "beyond the old limit");
+        assert!(limits.prefers_cholesky(&disk_1m));
+    }
+}
