@@ -31,9 +31,12 @@ use crate::error::BuildError;
 use crate::tape::Tape;
 
 /// Outputs of the full tape: Ψ, then 9 invariant derivatives or D + D² stretch
-/// ones, then up to 3 removable-twist limits, then the domain guards'
-/// arguments (beyond this many outputs a buffer is allocated per call).
-const MAX_OUT: usize = 1 + 3 + 9 + 3 + 16;
+/// ones, then up to 3 removable-twist limits.
+const MAX_OUT: usize = 1 + 3 + 9 + 3;
+
+/// Room for that many domain guards' arguments after them on the stack
+/// (beyond, a buffer is allocated per call).
+const MAX_GUARD_OUT: usize = 16;
 
 /// How the twist of one pair slot is resolved on σi + σj = 0.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -220,12 +223,16 @@ impl<const D: usize> InterpEnergy<D> {
     }
 }
 
-/// Run `f` on a zeroed output buffer of length `n` (on the stack up to
-/// [`MAX_OUT`]).
+/// Run `f` on a zeroed output buffer of length `n`: on the stack, exactly
+/// as large as before domain guards existed when there are none.
 #[inline]
 fn with_outputs<R>(n: usize, f: impl FnOnce(&mut [f64]) -> R) -> R {
-    if n <= MAX_OUT {
+    if n == 1 {
+        f(&mut [0.0])
+    } else if n <= MAX_OUT {
         f(&mut [0.0; MAX_OUT][..n])
+    } else if n <= MAX_OUT + MAX_GUARD_OUT {
+        f(&mut [0.0; MAX_OUT + MAX_GUARD_OUT][..n])
     } else {
         f(&mut vec![0.0; n])
     }
