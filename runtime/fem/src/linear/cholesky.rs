@@ -1,8 +1,9 @@
 //! Sparse Cholesky (LLᵀ) with faer's low-level API.
 //!
-//! [`CholeskyFactor::analyze`] runs the symbolic analysis once per pattern
-//! (AMD fill-reducing ordering, elimination tree, simplicial or supernodal
-//! structure chosen by faer from the flop ratio). Each Newton step then calls
+//! [`CholeskyFactor::analyze_with`] runs the symbolic analysis once per
+//! pattern (the fill-reducing ordering of [`CholeskyParams::ordering`],
+//! elimination tree, simplicial or supernodal structure chosen by faer from
+//! the flop ratio) and fixes the thread policy ([`ThreadPolicy`]). Each Newton step then calls
 //! [`CholeskyFactor::factorize`], which writes the numeric factor into the
 //! preallocated `l_values` using a preallocated scratch buffer, and
 //! [`CholeskyFactor::solve_in_place`]. The factor keeps a copy of the
@@ -17,10 +18,30 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use std::time::Instant;
+
+use faer::perm::PermRef;
 use faer::{Conj, MatMut, Par, Side};
 
+use serde::{Deserialize, Serialize};
+
+mod threads;
+
+pub use threads::{REPROBE_EVERY, ThreadPolicy};
+
+use super::ordering::{FillOrdering, permutation};
 use crate::error::FemError;
 use crate::pattern::Pattern;
+use threads::ThreadChooser;
+
+/// How [`CholeskyFactor`] orders and threads its factorisation.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct CholeskyParams {
+    /// Fill-reducing ordering of the symbolic analysis.
+    pub ordering: FillOrdering,
+    /// Threads of the numeric factorisation and the solves.
+    pub threads: ThreadPolicy,
+}
 
 /// The numeric factorisation hit a non-positive pivot (matrix not numerically PD).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,7 +67,10 @@ pub struct CholeskyFactor {
     analysed: (Vec<usize>, Vec<usize>),
     l_values: Vec<f64>,
     mem: MemBuffer,
+    threads: ThreadChooser,
+    /// The parallelism of the last numeric factorisation (used by the solves).
     par: Par,
+    params: CholeskyParams,
     factored: bool,
     symbolic_analyses: usize,
     numeric_factorizations: usize,
@@ -57,25 +81,41 @@ struct Analysis {
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
     mem: MemBuffer,
+    threads: ThreadChooser,
 }
 
-/// Symbolic analysis of the upper-triangular `pattern` (AMD ordering); the
-/// factor values and all scratch are allocated here, once per pattern.
-fn analysis(pattern: &Pattern, par: Par) -> Result<Analysis, FemError> {
+/// Symbolic analysis of the upper-triangular `pattern` with the ordering of
+/// `params`; the factor values and all scratch are allocated here, once per
+/// pattern, sized for the thread policy.
+fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemError> {
     let n = pattern.n();
     // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
     let a = SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
-    let symbolic = factorize_symbolic_cholesky(
-        a,
-        Side::Upper,
-        SymmetricOrdering::Amd,
-        CholeskySymbolicParams::default(),
-    )
-    .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
-    let req = StackReq::any_of(&[
-        symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        symbolic.solve_in_place_scratch::<f64>(1, par),
-    ]);
+    let perm = permutation(pattern, params.ordering)?;
+    let inv = perm.as_ref().map(|p| {
+        let mut inv = vec![0usize; n];
+        for (new, &old) in p.iter().enumerate() {
+            inv[old] = new;
+        }
+        inv
+    });
+    let ordering = match (&perm, &inv) {
+        (Some(p), Some(i)) => SymmetricOrdering::Custom(PermRef::new_checked(p, i, n)),
+        _ => SymmetricOrdering::Amd,
+    };
+    let symbolic =
+        factorize_symbolic_cholesky(a, Side::Upper, ordering, CholeskySymbolicParams::default())
+            .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
+    let threads = ThreadChooser::new(
+        params.threads,
+        matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+    );
+    let req = StackReq::any_of(&[Par::Seq, Par::rayon(0)].map(|par| {
+        StackReq::any_of(&[
+            symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            symbolic.solve_in_place_scratch::<f64>(1, par),
+        ])
+    }));
     let mem = MemBuffer::try_new(req)
         .map_err(|_| FemError::Symbolic("out of memory for scratch".into()))?;
     let len = symbolic.len_val();
@@ -88,7 +128,28 @@ fn analysis(pattern: &Pattern, par: Par) -> Result<Analysis, FemError> {
         symbolic,
         l_values,
         mem,
+        threads,
     })
+}
+
+/// Estimated flops of one numeric factorisation, Σ_j c_j² over the column
+/// counts c_j of L (supernodal: column k of a supernode of width w with r
+/// off-diagonal rows has c = w − k + r).
+fn flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
+    match symbolic.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => s
+            .col_ptr()
+            .windows(2)
+            .map(|w| ((w[1] - w[0]) as f64).powi(2))
+            .sum(),
+        SymbolicCholeskyRaw::Supernodal(s) => (0..s.n_supernodes())
+            .map(|k| {
+                let w = s.supernode_end()[k] - s.supernode_begin()[k];
+                let r = s.supernode(k).pattern().len();
+                (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>()
+            })
+            .sum(),
+    }
 }
 
 fn structure(pattern: &Pattern) -> (Vec<usize>, Vec<usize>) {
@@ -96,21 +157,28 @@ fn structure(pattern: &Pattern) -> (Vec<usize>, Vec<usize>) {
 }
 
 impl CholeskyFactor {
-    /// Symbolic analysis of the upper-triangular pattern; allocates the factor
-    /// storage and all scratch once.
+    /// Symbolic analysis of the upper-triangular pattern with the default
+    /// [`CholeskyParams`]; allocates the factor storage and all scratch once.
     pub fn analyze(pattern: &Pattern) -> Result<Self, FemError> {
-        let par = Par::rayon(0);
+        Self::analyze_with(pattern, CholeskyParams::default())
+    }
+
+    /// Symbolic analysis with the ordering and thread policy of `params`.
+    pub fn analyze_with(pattern: &Pattern, params: CholeskyParams) -> Result<Self, FemError> {
         let Analysis {
             symbolic,
             l_values,
             mem,
-        } = analysis(pattern, par)?;
+            threads,
+        } = analysis(pattern, params)?;
         Ok(CholeskyFactor {
             symbolic,
             analysed: structure(pattern),
             l_values,
             mem,
-            par,
+            threads,
+            par: Par::Seq,
+            params,
             factored: false,
             symbolic_analyses: 1,
             numeric_factorizations: 0,
@@ -128,8 +196,10 @@ impl CholeskyFactor {
             symbolic,
             l_values,
             mem,
-        } = analysis(pattern, self.par)?;
+            threads,
+        } = analysis(pattern, self.params)?;
         self.symbolic = symbolic;
+        self.threads = threads;
         self.l_values = l_values;
         self.mem = mem;
         self.analysed = structure(pattern);
@@ -152,19 +222,32 @@ impl CholeskyFactor {
     /// Σ_j c_j² over the column counts c_j of L (supernodal: column k of a
     /// supernode of width w with r off-diagonal rows has c = w − k + r).
     pub fn factor_flops(&self) -> f64 {
+        flops(&self.symbolic)
+    }
+
+    /// The ordering and thread policy this factor was analysed with.
+    pub fn params(&self) -> CholeskyParams {
+        self.params
+    }
+
+    /// Whether the last numeric factorisation (and so the solves) ran on
+    /// rayon's threads, as the [`ThreadPolicy`] chose.
+    pub fn is_parallel(&self) -> bool {
+        !matches!(self.par, Par::Seq)
+    }
+
+    /// Number of supernodes and the widest one (columns), or `None` for a
+    /// simplicial factor.
+    pub fn supernodes(&self) -> Option<(usize, usize)> {
         match self.symbolic.raw() {
-            SymbolicCholeskyRaw::Simplicial(s) => s
-                .col_ptr()
-                .windows(2)
-                .map(|w| ((w[1] - w[0]) as f64).powi(2))
-                .sum(),
-            SymbolicCholeskyRaw::Supernodal(s) => (0..s.n_supernodes())
-                .map(|k| {
-                    let w = s.supernode_end()[k] - s.supernode_begin()[k];
-                    let r = s.supernode(k).pattern().len();
-                    (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>()
-                })
-                .sum(),
+            SymbolicCholeskyRaw::Simplicial(_) => None,
+            SymbolicCholeskyRaw::Supernodal(s) => {
+                let widest = (0..s.n_supernodes())
+                    .map(|k| s.supernode_end()[k] - s.supernode_begin()[k])
+                    .max()
+                    .unwrap_or(0);
+                Some((s.n_supernodes(), widest))
+            }
         }
     }
 
@@ -202,6 +285,8 @@ impl CholeskyFactor {
         };
         let a = SparseColMatRef::new(sym, values);
         let stack = MemStack::new(&mut self.mem);
+        self.par = self.threads.next();
+        let start = Instant::now();
         match self.symbolic.factorize_numeric_llt::<f64>(
             &mut self.l_values,
             a,
@@ -212,6 +297,7 @@ impl CholeskyFactor {
             Default::default(),
         ) {
             Ok(_) => {
+                self.threads.record(self.par, start.elapsed().as_secs_f64());
                 self.factored = true;
                 Ok(())
             }
@@ -326,5 +412,103 @@ mod tests {
         let mut b = vec![1.0; 10];
         assert!(!f.solve_in_place(&mut b));
         assert_eq!(b, vec![1.0; 10]);
+    }
+
+    /// A diagonally dominant SPD matrix on `p`: off-diagonals −1.
+    fn dominant(p: &Pattern) -> Vec<f64> {
+        let mut v = vec![-1.0; p.nnz()];
+        for j in 0..p.n() {
+            v[p.diag_slot(j)] = 1.0 + 30.0;
+        }
+        v
+    }
+
+    #[test]
+    fn every_ordering_and_policy_solves_the_same_system() {
+        let p = crate::linear::ordering::tests::grid(9, 7, 2);
+        let v = dominant(&p);
+        let xs: Vec<f64> = (0..p.n()).map(|i| (0.7 * i as f64).sin()).collect();
+        let mut b = vec![0.0; p.n()];
+        p.sym_matvec(&v, &xs, &mut b);
+        for ordering in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
+            for threads in ThreadPolicy::ALL {
+                let params = CholeskyParams { ordering, threads };
+                let mut f = CholeskyFactor::analyze_with(&p, params).unwrap();
+                assert_eq!(f.params(), params);
+                for _ in 0..3 {
+                    f.factorize(&p, &v).unwrap();
+                    let mut x = b.clone();
+                    assert!(f.solve_in_place(&mut x));
+                    let err = x
+                        .iter()
+                        .zip(&xs)
+                        .map(|(a, e)| (a - e).abs())
+                        .fold(0.0, f64::max);
+                    assert!(err < 1e-12, "{params:?}: {err}");
+                }
+                assert_eq!(f.symbolic_analyses(), 1, "{params:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn custom_permutations_follow_faers_convention() {
+        // dim 1: no two unknowns share a closed neighbourhood, so block AMD is
+        // faer's AMD passed back as a custom permutation; a permutation read
+        // the wrong way round would change the fill.
+        let p = crate::linear::ordering::tests::grid(12, 9, 1);
+        let fill = |ordering| {
+            let params = CholeskyParams {
+                ordering,
+                ..Default::default()
+            };
+            CholeskyFactor::analyze_with(&p, params)
+                .unwrap()
+                .factor_nnz()
+        };
+        assert_eq!(fill(FillOrdering::BlockAmd), fill(FillOrdering::Amd));
+        let q = crate::linear::ordering::tests::grid(12, 9, 2);
+        let two = |ordering| {
+            let params = CholeskyParams {
+                ordering,
+                ..Default::default()
+            };
+            CholeskyFactor::analyze_with(&q, params)
+                .unwrap()
+                .factor_nnz()
+        };
+        assert!(two(FillOrdering::BlockAmd) <= two(FillOrdering::Amd));
+    }
+
+    #[test]
+    fn auto_threads_times_one_sequential_and_one_parallel_factorisation() {
+        let p = crate::linear::ordering::tests::grid(100, 100, 2);
+        let v = dominant(&p);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let params = CholeskyParams {
+                threads: ThreadPolicy::Auto,
+                ..Default::default()
+            };
+            let mut f = CholeskyFactor::analyze_with(&p, params).unwrap();
+            assert!(
+                f.is_supernodal(),
+                "the grid must be supernodal for this test"
+            );
+            f.factorize(&p, &v).unwrap();
+            assert!(!f.is_parallel(), "first probe: sequential");
+            f.factorize(&p, &v).unwrap();
+            assert!(f.is_parallel(), "second probe: parallel");
+            let mut x = vec![1.0; p.n()];
+            assert!(f.solve_in_place(&mut x));
+            let mut d = CholeskyFactor::analyze(&p).unwrap();
+            for _ in 0..3 {
+                d.factorize(&p, &v).unwrap();
+                assert!(!d.is_parallel(), "the default is sequential");
+            }
+        });
     }
 }

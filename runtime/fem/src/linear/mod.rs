@@ -20,6 +20,7 @@
 
 pub mod auto;
 pub mod cholesky;
+pub mod ordering;
 pub mod pcg;
 pub mod reuse;
 

@@ -1,0 +1,149 @@
+//! Fill, flops and numeric factorisation time of the sparse Cholesky per
+//! fill-reducing ordering and thread policy, on the Newton pattern of a mesh
+//! (2 unknowns per vertex for a triangle mesh: the parameterisation; 3 for a
+//! tet mesh). The values are a diagonally dominant matrix on that pattern
+//! (factor time depends on the structure only).
+//!
+//! `cargo run --release -p ecc-fem [--features metis] --example ordering -- MESH|disk:RINGS [REPEATS]`
+//!
+//! Prints one markdown row per (ordering, thread policy): n, nnz(L), flops,
+//! supernodes, the widest one, analysis time and the best numeric
+//! factorisation time of REPEATS (default 3) for one thread (`sequential`)
+//! and two (`parallel`; run with RAYON_NUM_THREADS=2), alternating so the
+//! machine's load hits both alike, and the mean time of REPEATS
+//! factorisations under the `auto` policy after its two probes.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use ecc_fem::linear::cholesky::{CholeskyFactor, CholeskyParams, ThreadPolicy};
+use ecc_fem::linear::ordering::FillOrdering;
+use ecc_fem::{Assembler, DofMap, Elastic, Pattern, Term};
+use ecc_mesh::{AnyMesh, read_mesh};
+use ecc_runtime::energies::{StableNeoHookean, SymmetricDirichlet};
+
+fn pattern(spec: &str) -> Result<Pattern, String> {
+    let mesh = match spec.strip_prefix("disk:") {
+        Some(rings) => {
+            let rings = rings.parse().map_err(|e| format!("{spec}: {e}"))?;
+            AnyMesh::Tri(ecc_mesh::disk_tri(rings, 1.0))
+        }
+        None => read_mesh(spec).map_err(|e| e.to_string())?,
+    };
+    let p = match mesh {
+        AnyMesh::Tri(m) => {
+            let term = Elastic::surface(Arc::new(SymmetricDirichlet), &m.positions, &m.triangles)
+                .map_err(|e| e.to_string())?;
+            let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(term)];
+            let dofs = DofMap::all_free(m.positions.len(), 2).map_err(|e| e.to_string())?;
+            let a = Assembler::new(&terms, dofs).map_err(|e| e.to_string())?;
+            a.pattern().clone()
+        }
+        AnyMesh::Tet(m) => {
+            let term = Elastic::new(
+                Arc::new(StableNeoHookean::new(1.0, 1.0)),
+                &m.positions,
+                &m.tets,
+            )
+            .map_err(|e| e.to_string())?;
+            let terms: Vec<Box<dyn Term<3>>> = vec![Box::new(term)];
+            let dofs = DofMap::all_free(m.positions.len(), 3).map_err(|e| e.to_string())?;
+            let a = Assembler::new(&terms, dofs).map_err(|e| e.to_string())?;
+            a.pattern().clone()
+        }
+    };
+    Ok(p)
+}
+
+/// Off-diagonals −1, diagonal = 1 + number of off-diagonals in the row: SPD.
+fn values(p: &Pattern) -> Vec<f64> {
+    let n = p.n();
+    let mut deg = vec![1.0; n];
+    let mut v = vec![-1.0; p.nnz()];
+    for j in 0..n {
+        for (k, &i) in p.row_idx()[p.col_ptr()[j]..p.col_ptr()[j + 1]]
+            .iter()
+            .enumerate()
+        {
+            if i != j {
+                deg[i] += 1.0;
+                deg[j] += 1.0;
+            } else {
+                v[p.col_ptr()[j] + k] = 0.0;
+            }
+        }
+    }
+    for j in 0..n {
+        v[p.diag_slot(j)] = deg[j];
+    }
+    v
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let Some(spec) = args.first() else {
+        eprintln!("usage: ordering MESH|disk:RINGS [REPEATS]");
+        std::process::exit(2);
+    };
+    let repeats: usize = args.get(1).and_then(|r| r.parse().ok()).unwrap_or(3);
+    let p = match pattern(spec) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("{e}");
+            std::process::exit(1);
+        }
+    };
+    let v = values(&p);
+    println!(
+        "{spec}: n = {}, nnz(A upper) = {}, rayon threads = {}",
+        p.n(),
+        p.nnz(),
+        rayon::current_num_threads()
+    );
+    println!(
+        "| ordering | nnz(L) | flops | supernodes | widest | analysis s | factor s (1T) | factor s (2T) |"
+    );
+    println!("|---|---|---|---|---|---|---|---|");
+    for ordering in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
+        let mk = |threads| {
+            let t = Instant::now();
+            let f = CholeskyFactor::analyze_with(&p, CholeskyParams { ordering, threads }).unwrap();
+            (f, t.elapsed().as_secs_f64())
+        };
+        let (mut seq, t_an) = mk(ThreadPolicy::Sequential);
+        let (mut par, _) = mk(ThreadPolicy::Parallel);
+        let (mut best_seq, mut best_par) = (f64::INFINITY, f64::INFINITY);
+        for _ in 0..repeats {
+            for (f, best) in [(&mut seq, &mut best_seq), (&mut par, &mut best_par)] {
+                let t = Instant::now();
+                f.factorize(&p, &v).unwrap();
+                *best = best.min(t.elapsed().as_secs_f64());
+            }
+        }
+        let rhs: Vec<f64> = (0..p.n()).map(|i| (0.3 * i as f64).cos()).collect();
+        let (mut xs, mut xp) = (rhs.clone(), rhs);
+        assert!(seq.solve_in_place(&mut xs) && par.solve_in_place(&mut xp));
+        let same = xs.iter().zip(&xp).all(|(a, b)| a.to_bits() == b.to_bits());
+        eprintln!(
+            "{}: 1T and 2T solutions bitwise equal: {same}",
+            ordering.name()
+        );
+        drop((seq, par));
+        let (mut auto, _) = mk(ThreadPolicy::Auto);
+        for _ in 0..2 {
+            auto.factorize(&p, &v).unwrap();
+        }
+        let t = Instant::now();
+        for _ in 0..repeats {
+            auto.factorize(&p, &v).unwrap();
+        }
+        let t_auto = t.elapsed().as_secs_f64() / repeats as f64;
+        let (ns, widest) = auto.supernodes().unwrap_or((0, 0));
+        println!(
+            "| {} | {} | {:.3e} | {ns} | {widest} | {t_an:.3} | {best_seq:.4} | {best_par:.4} | {t_auto:.4} |",
+            ordering.name(),
+            auto.factor_nnz(),
+            auto.factor_flops(),
+        );
+    }
+}

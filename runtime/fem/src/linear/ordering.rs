@@ -1,0 +1,390 @@
+//! Fill-reducing orderings for the sparse Cholesky factor.
+//!
+//! The Newton matrix of a mesh problem has d×d blocks: the unknowns of one
+//! vertex share their sparsity structure (same neighbours, fully coupled to
+//! each other). [`Supervariables`] detects such groups (consecutive unknowns
+//! whose closed neighbourhoods are equal), so the orderings work on the
+//! vertex graph (d² times fewer edges) and expand each vertex back to its
+//! unknowns, keeping the unknowns of a vertex adjacent in the factor (one
+//! supernode column block per vertex at least).
+//!
+//! * [`FillOrdering::Amd`]: faer's approximate minimum degree on the full
+//!   unknown graph (the default, see [`FillOrdering::default`]).
+//! * [`FillOrdering::BlockAmd`]: the same AMD on the vertex graph, expanded.
+//! * [`FillOrdering::Metis`]: METIS nested dissection (`METIS_NodeND`) on the
+//!   vertex graph, vertex weights = unknowns per vertex; needs the `metis`
+//!   cargo feature (METIS is compiled from source by cargo, a C compiler is
+//!   all it needs). Without the feature, asking for it is a clear error.
+//!
+//! All orderings produce `perm` with `perm[new] = old` (faer's and METIS's
+//! convention: the factored matrix is A(perm, perm)).
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::linalg::amd;
+use serde::{Deserialize, Serialize};
+
+use crate::error::FemError;
+use crate::pattern::Pattern;
+
+/// Which fill-reducing ordering the symbolic analysis uses.
+///
+/// The names (`"amd"`, `"block-amd"`, `"metis"`) are stable: scene keys and
+/// the benchmark report select orderings by them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FillOrdering {
+    /// Approximate minimum degree on the unknown graph (faer's own).
+    Amd,
+    /// Approximate minimum degree on the vertex (supervariable) graph.
+    BlockAmd,
+    /// METIS nested dissection on the vertex graph (feature `metis`).
+    Metis,
+}
+
+impl Default for FillOrdering {
+    /// faer's AMD, as before these choices existed. Block AMD has the same
+    /// fill at about half the ordering time on large meshes but rounds the
+    /// Newton steps differently (a changed trajectory); METIS has fewer
+    /// flops on the larger meshes but twice as many, smaller supernodes and
+    /// was not faster with faer (docs/benchmarks/ordering.md).
+    fn default() -> Self {
+        FillOrdering::Amd
+    }
+}
+
+impl FillOrdering {
+    /// Every ordering, compiled in or not.
+    pub const ALL: [FillOrdering; 3] = [
+        FillOrdering::Amd,
+        FillOrdering::BlockAmd,
+        FillOrdering::Metis,
+    ];
+
+    /// The stable name.
+    pub fn name(self) -> &'static str {
+        match self {
+            FillOrdering::Amd => "amd",
+            FillOrdering::BlockAmd => "block-amd",
+            FillOrdering::Metis => "metis",
+        }
+    }
+
+    /// The ordering with this stable name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|o| o.name() == name)
+    }
+
+    /// Whether this build can compute the ordering.
+    pub fn is_available(self) -> bool {
+        !matches!(self, FillOrdering::Metis) || cfg!(feature = "metis")
+    }
+}
+
+/// Groups of consecutive unknowns with equal closed neighbourhoods, and the
+/// graph between groups (full adjacency, no self loops, CSR).
+pub(crate) struct Supervariables {
+    /// `start[g]..start[g + 1]` are the unknowns of group `g`.
+    pub start: Vec<usize>,
+    /// CSR row pointers of the group graph.
+    pub adj_ptr: Vec<usize>,
+    /// CSR neighbours of the group graph (sorted per group).
+    pub adj: Vec<usize>,
+}
+
+/// Full symmetric adjacency of the upper-triangular `pattern`, each list
+/// sorted, diagonal excluded.
+fn full_adjacency(pattern: &Pattern) -> (Vec<usize>, Vec<usize>) {
+    let n = pattern.n();
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let mut ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        for &i in &ri[cp[j]..cp[j + 1]] {
+            if i != j {
+                ptr[i + 1] += 1;
+                ptr[j + 1] += 1;
+            }
+        }
+    }
+    for j in 0..n {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut fill = ptr.clone();
+    let mut adj = vec![0usize; ptr[n]];
+    // columns in increasing order: every list receives its entries sorted
+    // (row i gets j > i in increasing j after all its own rows < i).
+    for j in 0..n {
+        for &i in &ri[cp[j]..cp[j + 1]] {
+            if i != j {
+                adj[fill[j]] = i;
+                fill[j] += 1;
+            }
+        }
+        for &i in &ri[cp[j]..cp[j + 1]] {
+            if i != j {
+                adj[fill[i]] = j;
+                fill[i] += 1;
+            }
+        }
+    }
+    for j in 0..n {
+        adj[ptr[j]..ptr[j + 1]].sort_unstable();
+    }
+    (ptr, adj)
+}
+
+/// Whether the closed neighbourhoods of `a` and `a + 1` are equal:
+/// N(a) ∪ {a} = N(a+1) ∪ {a+1}, both lists sorted.
+fn same_closed(adj: &[usize], ptr: &[usize], a: usize) -> bool {
+    let (na, nb) = (&adj[ptr[a]..ptr[a + 1]], &adj[ptr[a + 1]..ptr[a + 2]]);
+    if na.len() != nb.len() || na.binary_search(&(a + 1)).is_err() {
+        return false;
+    }
+    let sa = na.iter().filter(|&&v| v != a + 1);
+    let sb = nb.iter().filter(|&&v| v != a);
+    sa.eq(sb)
+}
+
+impl Supervariables {
+    /// Detect the groups of `pattern` and build their graph.
+    pub fn of(pattern: &Pattern) -> Self {
+        let n = pattern.n();
+        let (ptr, adj) = full_adjacency(pattern);
+        let mut start = vec![0usize];
+        let mut group = vec![0usize; n];
+        for (j, gj) in group.iter_mut().enumerate() {
+            if j > 0 && !same_closed(&adj, &ptr, j - 1) {
+                start.push(j);
+            }
+            *gj = start.len() - 1;
+        }
+        start.push(n);
+        let ng = start.len() - 1;
+        let mut adj_ptr = vec![0usize; ng + 1];
+        let mut gadj = Vec::new();
+        for g in 0..ng {
+            let first = start[g];
+            // all members share the closed neighbourhood: read the first's
+            let mut nb: Vec<usize> = adj[ptr[first]..ptr[first + 1]]
+                .iter()
+                .map(|&i| group[i])
+                .filter(|&h| h != g)
+                .collect();
+            nb.dedup(); // sorted unknowns map to sorted groups
+            gadj.extend_from_slice(&nb);
+            adj_ptr[g + 1] = gadj.len();
+        }
+        Supervariables {
+            start,
+            adj_ptr,
+            adj: gadj,
+        }
+    }
+
+    /// Number of groups.
+    pub fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// Expand a group permutation (`gperm[new] = old group`) to unknowns.
+    pub fn expand(&self, gperm: &[usize]) -> Vec<usize> {
+        gperm
+            .iter()
+            .flat_map(|&g| self.start[g]..self.start[g + 1])
+            .collect()
+    }
+
+    /// Upper-triangular pattern (with diagonal) of the group graph, CSC.
+    fn upper(&self) -> (Vec<usize>, Vec<usize>) {
+        let mut cp = vec![0usize];
+        let mut ri = Vec::new();
+        for g in 0..self.len() {
+            let nb = &self.adj[self.adj_ptr[g]..self.adj_ptr[g + 1]];
+            ri.extend(nb.iter().copied().filter(|&h| h < g));
+            ri.push(g);
+            cp.push(ri.len());
+        }
+        (cp, ri)
+    }
+}
+
+/// faer's AMD on the upper-triangular CSC pattern `(cp, ri)` of size `n`.
+fn amd_order(n: usize, cp: &[usize], ri: &[usize]) -> Result<Vec<usize>, FemError> {
+    let a = SymbolicSparseColMatRef::new_checked(n, n, cp, None, ri);
+    let mut perm = vec![0usize; n];
+    let mut inv = vec![0usize; n];
+    let mut mem = MemBuffer::try_new(amd::order_scratch::<usize>(n, ri.len()))
+        .map_err(|_| FemError::Symbolic("out of memory for the AMD ordering".into()))?;
+    amd::order(
+        &mut perm,
+        &mut inv,
+        a,
+        amd::Control::default(),
+        MemStack::new(&mut mem),
+    )
+    .map_err(|e| FemError::Symbolic(format!("AMD ordering: {e:?}")))?;
+    Ok(perm)
+}
+
+/// The fill-reducing permutation (`perm[new] = old`) of `pattern` by
+/// `ordering`, or `None` for [`FillOrdering::Amd`] (faer computes it inside
+/// the symbolic analysis).
+pub(crate) fn permutation(
+    pattern: &Pattern,
+    ordering: FillOrdering,
+) -> Result<Option<Vec<usize>>, FemError> {
+    match ordering {
+        FillOrdering::Amd => Ok(None),
+        FillOrdering::BlockAmd => {
+            let sv = Supervariables::of(pattern);
+            let (cp, ri) = sv.upper();
+            Ok(Some(sv.expand(&amd_order(sv.len(), &cp, &ri)?)))
+        }
+        FillOrdering::Metis => metis_permutation(pattern).map(Some),
+    }
+}
+
+#[cfg(feature = "metis")]
+fn metis_permutation(pattern: &Pattern) -> Result<Vec<usize>, FemError> {
+    let sv = Supervariables::of(pattern);
+    let gperm = metis_nd::node_nd(&sv)?;
+    Ok(sv.expand(&gperm))
+}
+
+#[cfg(not(feature = "metis"))]
+fn metis_permutation(_: &Pattern) -> Result<Vec<usize>, FemError> {
+    Err(FemError::Symbolic(
+        "the `metis` ordering needs ecc-fem built with the `metis` feature".into(),
+    ))
+}
+
+#[cfg(feature = "metis")]
+mod metis_nd {
+    use super::Supervariables;
+    use crate::error::FemError;
+
+    /// `METIS_NodeND` on the group graph, weights = group sizes.
+    pub(super) fn node_nd(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
+        let ng = sv.len();
+        if ng == 0 {
+            return Ok(Vec::new());
+        }
+        let idx = |v: usize| {
+            i32::try_from(v).map_err(|_| FemError::Symbolic("graph too large for METIS".into()))
+        };
+        let mut nvtxs = idx(ng)?;
+        let mut xadj = sv
+            .adj_ptr
+            .iter()
+            .map(|&v| idx(v))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut adjncy = sv
+            .adj
+            .iter()
+            .map(|&v| idx(v))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut vwgt = (0..ng)
+            .map(|g| idx(sv.start[g + 1] - sv.start[g]))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut perm = vec![0i32; ng];
+        let mut iperm = vec![0i32; ng];
+        // SAFETY: every array has the length METIS reads (nvtxs + 1, xadj[nvtxs],
+        // nvtxs, nvtxs, nvtxs); options = NULL selects METIS's defaults.
+        let status = unsafe {
+            metis_sys::METIS_NodeND(
+                &mut nvtxs,
+                xadj.as_mut_ptr(),
+                adjncy.as_mut_ptr(),
+                vwgt.as_mut_ptr(),
+                std::ptr::null_mut(),
+                perm.as_mut_ptr(),
+                iperm.as_mut_ptr(),
+            )
+        };
+        if status != metis_sys::rstatus_et_METIS_OK {
+            return Err(FemError::Symbolic(format!(
+                "METIS_NodeND failed (status {status})"
+            )));
+        }
+        Ok(perm.into_iter().map(|p| p as usize).collect())
+    }
+}
+
+#[cfg(test)]
+pub(crate) mod tests {
+    use super::*;
+    use crate::dofs::DofMap;
+    use crate::pattern::{StencilSet, build};
+
+    /// Triangles of an nx×ny grid, `dim` unknowns per vertex.
+    pub(crate) fn grid(nx: usize, ny: usize, dim: usize) -> Pattern {
+        let v = |i: usize, j: usize| i + j * (nx + 1);
+        let mut tris = Vec::new();
+        for j in 0..ny {
+            for i in 0..nx {
+                tris.extend([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+                tris.extend([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+            }
+        }
+        let dofs = DofMap::all_free((nx + 1) * (ny + 1), dim).unwrap();
+        let set = StencilSet {
+            name: "t",
+            arity: 3,
+            stencils: &tris,
+        };
+        build(&[set], &dofs).unwrap().0
+    }
+
+    fn is_permutation(p: &[usize], n: usize) -> bool {
+        let mut seen = vec![false; n];
+        p.len() == n
+            && p.iter()
+                .all(|&i| i < n && !std::mem::replace(&mut seen[i], true))
+    }
+
+    #[test]
+    fn supervariables_are_the_vertices() {
+        for dim in [1, 2, 3] {
+            let p = grid(4, 3, dim);
+            let sv = Supervariables::of(&p);
+            assert_eq!(sv.len(), 20, "dim {dim}");
+            assert!(sv.start.windows(2).all(|w| w[1] - w[0] == dim));
+            // interior vertex (1,1) = 6: 6 neighbours in this triangulation
+            assert_eq!(sv.adj_ptr[7] - sv.adj_ptr[6], 6);
+        }
+    }
+
+    #[test]
+    fn names_round_trip() {
+        for o in FillOrdering::ALL {
+            assert_eq!(FillOrdering::from_name(o.name()), Some(o));
+            let json = serde_json::to_string(&o).unwrap();
+            assert_eq!(json, format!("\"{}\"", o.name()));
+        }
+        assert_eq!(FillOrdering::from_name("nested"), None);
+        assert!(FillOrdering::default().is_available());
+    }
+
+    #[test]
+    fn every_available_ordering_is_a_permutation_keeping_blocks() {
+        let p = grid(7, 5, 2);
+        for o in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
+            let Some(perm) = permutation(&p, o).unwrap() else {
+                assert_eq!(o, FillOrdering::Amd);
+                continue;
+            };
+            assert!(is_permutation(&perm, p.n()), "{o:?}");
+            for pair in perm.chunks_exact(2) {
+                assert_eq!(pair[0] % 2, 0, "{o:?}: a vertex's unknowns stay together");
+                assert_eq!(pair[1], pair[0] + 1, "{o:?}");
+            }
+        }
+    }
+
+    #[cfg(not(feature = "metis"))]
+    #[test]
+    fn metis_without_the_feature_is_a_clear_error() {
+        let e = permutation(&grid(2, 2, 2), FillOrdering::Metis).unwrap_err();
+        assert!(format!("{e}").contains("`metis` feature"), "{e}");
+    }
+}
