@@ -511,4 +511,25 @@ mod tests {
             }
         });
     }
+
+    #[test]
+    fn the_linear_system_factors_with_the_chosen_params() {
+        use crate::linear::{AutoLimits, LinearSolver, LinearSystem};
+        let p = crate::linear::ordering::tests::grid(6, 5, 2);
+        let params = CholeskyParams {
+            ordering: FillOrdering::BlockAmd,
+            threads: ThreadPolicy::Parallel,
+        };
+        for choice in [LinearSolver::Cholesky, LinearSolver::Auto] {
+            let sys =
+                LinearSystem::with_cholesky_params(&p, choice, AutoLimits::default(), 2, params)
+                    .unwrap();
+            assert_eq!(sys.cholesky().unwrap().params(), params, "{choice:?}");
+            let default = LinearSystem::new(&p, choice, AutoLimits::default()).unwrap();
+            assert_eq!(
+                default.cholesky().unwrap().params(),
+                CholeskyParams::default()
+            );
+        }
+    }
 }

@@ -29,7 +29,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 pub use auto::{AutoLimits, SystemSize};
-use cholesky::{CholeskyFactor, FactorizeError};
+use cholesky::{CholeskyFactor, CholeskyParams, FactorizeError};
 use pcg::{Pcg, PcgInfo};
 pub use reuse::FactorReuse;
 
@@ -125,16 +125,28 @@ impl LinearSystem {
         limits: AutoLimits,
         dim: usize,
     ) -> Result<Self, FemError> {
+        Self::with_cholesky_params(pattern, choice, limits, dim, CholeskyParams::default())
+    }
+
+    /// [`LinearSystem::for_dimension`] with the fill-reducing ordering and
+    /// thread policy of the Cholesky factor chosen by `cholesky`.
+    pub fn with_cholesky_params(
+        pattern: &Pattern,
+        choice: LinearSolver,
+        limits: AutoLimits,
+        dim: usize,
+        cholesky: CholeskyParams,
+    ) -> Result<Self, FemError> {
         let pcg = || Backend::Pcg(Box::new(Pcg::new(pattern)));
         let mut discarded_analyses = 0;
         let (backend, analysis) = match choice {
             LinearSolver::Pcg => (pcg(), None),
             LinearSolver::Cholesky => {
-                let f = CholeskyFactor::analyze(pattern)?;
+                let f = CholeskyFactor::analyze_with(pattern, cholesky)?;
                 let a = (f.factor_bytes(), f.factor_flops());
                 (Backend::Cholesky(Box::new(f)), Some(a))
             }
-            LinearSolver::Auto => match CholeskyFactor::analyze(pattern) {
+            LinearSolver::Auto => match CholeskyFactor::analyze_with(pattern, cholesky) {
                 Ok(f) => {
                     let a = (f.factor_bytes(), f.factor_flops());
                     let size = SystemSize {
