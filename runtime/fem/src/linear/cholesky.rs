@@ -532,4 +532,30 @@ mod tests {
             );
         }
     }
+
+    #[cfg(not(feature = "metis"))]
+    #[test]
+    fn an_ordering_not_compiled_in_is_an_error_not_a_silent_pcg() {
+        use crate::linear::{AutoLimits, LinearSolver, LinearSystem};
+        let p = crate::linear::ordering::tests::grid(3, 3, 2);
+        let params = CholeskyParams {
+            ordering: FillOrdering::Metis,
+            ..Default::default()
+        };
+        for choice in [LinearSolver::Cholesky, LinearSolver::Auto] {
+            let e =
+                LinearSystem::with_cholesky_params(&p, choice, AutoLimits::default(), 2, params)
+                    .err()
+                    .expect("metis without the feature must fail");
+            assert!(format!("{e}").contains("`metis` feature"), "{e}");
+        }
+        let pcg = LinearSystem::with_cholesky_params(
+            &p,
+            LinearSolver::Pcg,
+            AutoLimits::default(),
+            2,
+            params,
+        );
+        assert!(pcg.is_ok(), "PCG does not order");
+    }
 }

@@ -137,6 +137,13 @@ impl LinearSystem {
         dim: usize,
         cholesky: CholeskyParams,
     ) -> Result<Self, FemError> {
+        if choice != LinearSolver::Pcg && !cholesky.ordering.is_available() {
+            // an error here, not `Auto` quietly falling back to PCG below
+            return Err(FemError::Symbolic(format!(
+                "the `{}` ordering needs ecc-fem built with the `metis` feature",
+                cholesky.ordering.name()
+            )));
+        }
         let pcg = || Backend::Pcg(Box::new(Pcg::new(pattern)));
         let mut discarded_analyses = 0;
         let (backend, analysis) = match choice {
