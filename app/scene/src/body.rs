@@ -4,6 +4,7 @@
 
 use std::sync::Arc;
 
+use ecc_fem::elastic::Projection;
 use ecc_fem::{Elastic, FemError, Term, Tet, Tri};
 use ecc_runtime::Energy;
 
@@ -22,17 +23,20 @@ fn elastic<const D: usize>(
     e: Arc<dyn Energy<D>>,
     rest: &[[f64; D]],
     el: &[usize],
+    projection: Projection,
 ) -> Result<Box<dyn Term<D>>, FemError> {
     let p = rest.as_flattened();
     let term: Box<dyn std::any::Any> = match D {
         2 => {
             let e = same::<Arc<dyn Energy<2>>>(e).expect("D = 2");
-            let t = Elastic::<dyn Energy<2>, Tri>::planar(e, p.as_chunks().0, el.as_chunks().0)?;
+            let t = Elastic::<dyn Energy<2>, Tri>::planar(e, p.as_chunks().0, el.as_chunks().0)?
+                .with_projection(projection);
             Box::new(Box::new(t) as Box<dyn Term<2>>)
         }
         _ => {
             let e = same::<Arc<dyn Energy<3>>>(e).expect("D = 3");
-            let t = Elastic::<dyn Energy<3>, Tet>::new(e, p.as_chunks().0, el.as_chunks().0)?;
+            let t = Elastic::<dyn Energy<3>, Tet>::new(e, p.as_chunks().0, el.as_chunks().0)?
+                .with_projection(projection);
             Box::new(Box::new(t) as Box<dyn Term<3>>)
         }
     };
@@ -48,6 +52,8 @@ pub struct Body<const D: usize> {
     pub elements: Vec<usize>,
     /// The energy density Ψ.
     pub energy: Arc<dyn Energy<D>>,
+    /// How the elastic term projects element Hessians (default F-space).
+    pub projection: Projection,
 }
 
 impl Body<2> {
@@ -57,6 +63,7 @@ impl Body<2> {
             rest,
             elements: tris.as_flattened().to_vec(),
             energy,
+            projection: Projection::default(),
         }
     }
 }
@@ -68,6 +75,7 @@ impl Body<3> {
             rest,
             elements: tets.as_flattened().to_vec(),
             energy,
+            projection: Projection::default(),
         }
     }
 }
@@ -91,9 +99,15 @@ impl<const D: usize> Body<D> {
         &self.elements[q * (D + 1)..(q + 1) * (D + 1)]
     }
 
+    /// The same body with element Hessians projected by `projection`.
+    pub fn with_projection(mut self, projection: Projection) -> Self {
+        self.projection = projection;
+        self
+    }
+
     /// The elastic term for the given rest positions (same elements).
     pub fn elastic_at(&self, rest: &[[f64; D]]) -> Result<Box<dyn Term<D>>, FemError> {
-        elastic(self.energy.clone(), rest, &self.elements)
+        elastic(self.energy.clone(), rest, &self.elements, self.projection)
     }
 
     /// The elastic term over the body's own rest shape.

@@ -163,6 +163,9 @@ pub struct Summary {
     pub scene_file: String,
     /// "quasi_static", "dynamic", "interpolation" or "parameterization".
     pub mode: String,
+    /// The element Hessian projection (`[solver] projection`): "f-space",
+    /// "element" or "hybrid".
+    pub projection: String,
     /// The mesh.
     pub mesh: MeshStats,
     /// The energy.

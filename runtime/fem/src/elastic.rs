@@ -19,11 +19,21 @@
 //! and surface triangles in 3D ([`Elastic::surface`], each expressed in its
 //! own isometric 2D frame: the parameterisation setting). Positions x are
 //! always 2D for triangles and 3D for tets.
+//!
+//! **Projection** ([`Projection`], [`Elastic::with_projection`]): the
+//! element Hessian |q| Bᵀ H B is made PSD either in F-space (filter H's
+//! analytic eigenvalues, |q| Bᵀ f(H) B: `FSpace`) or exactly at element level
+//! (the d²×d² congruence of `ecc_runtime::element_eval_projected`: `Element`),
+//! or exactly only on elements whose rest metric M = βᵀβ is far from
+//! isotropic (`Hybrid`). They coincide wherever H ⪰ 0 or M ∝ I.
 
 use std::marker::PhantomData;
 use std::sync::Arc;
 
-use ecc_runtime::{Dim, Energy, Filter, Nodes, Rest, RestError, Space, element_eval, element_psi};
+use ecc_runtime::{
+    Congruence, Dim, Energy, Filter, Nodes, Rest, RestError, Space, element_eval,
+    element_eval_projected, element_psi,
+};
 use nalgebra::SMatrix;
 
 use crate::error::FemError;
@@ -33,6 +43,51 @@ use crate::term::Term;
 /// Search interval (0, T] for the inversion-free bound: only steps ≤ 1 are
 /// ever taken, T > 1/`barrier_safety` keeps the bound exact where it matters.
 const STEP_SEARCH_MAX: f64 = 2.0;
+
+/// Default threshold of [`Projection::hybrid`] on cond(M) (M = βᵀβ, 1 for the
+/// regular simplex).
+pub const HYBRID_MIN_COND: f64 = 2.0;
+
+/// How an element Hessian is made positive semi-definite (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// |q| Bᵀ f(H) B: the analytic eigenvalues of the F-space Hessian H are
+    /// filtered (no eigensolve at all). Exact when M ∝ I or H ⪰ 0.
+    FSpace,
+    /// The exact projection f(|q| Bᵀ H B) of the element Hessian, through the
+    /// d²×d² congruence (one 4×4 / 9×9 eigensolve per indefinite element).
+    Element,
+    /// `Element` on elements with cond(M) > `min_cond`, `FSpace` elsewhere.
+    Hybrid {
+        /// Smallest condition number of the rest metric M that gets the exact projection.
+        min_cond: f64,
+    },
+}
+
+impl Default for Projection {
+    /// See `docs/benchmarks/projection.md` for the measurements behind it.
+    fn default() -> Self {
+        Projection::FSpace
+    }
+}
+
+impl Projection {
+    /// [`Projection::Hybrid`] with the default threshold [`HYBRID_MIN_COND`].
+    pub fn hybrid() -> Self {
+        Projection::Hybrid {
+            min_cond: HYBRID_MIN_COND,
+        }
+    }
+
+    /// The scene/CLI name: `f-space`, `element` or `hybrid`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Projection::FSpace => "f-space",
+            Projection::Element => "element",
+            Projection::Hybrid { .. } => "hybrid",
+        }
+    }
+}
 
 /// Linear triangles (2D positions).
 #[derive(Clone, Copy, Debug)]
@@ -45,6 +100,8 @@ pub struct Tet;
 pub trait Simplex: Send + Sync + 'static {
     /// Rest data (Dm⁻¹ and measure): `Rest<d>`.
     type Rest: Copy + Send + Sync + std::fmt::Debug;
+    /// Rest factors of the exact element projection: `Congruence<d>`.
+    type Congruence: Copy + Send + Sync + std::fmt::Debug;
     /// Vertices per element (d + 1).
     const NODES: usize;
     /// The first root α ∈ (0, T] of det Ds(x + α dx) (quadratic in 2D, cubic
@@ -60,6 +117,7 @@ fn edge<const D: usize>(p: &[f64], k: usize) -> [f64; D] {
 
 impl Simplex for Tri {
     type Rest = Rest<2>;
+    type Congruence = Congruence<2>;
     const NODES: usize = 3;
     fn first_inversion(p: &[f64], d: &[f64]) -> Option<f64> {
         let c = tri_det_poly(edge(p, 1), edge(p, 2), edge(d, 1), edge(d, 2));
@@ -69,6 +127,7 @@ impl Simplex for Tri {
 
 impl Simplex for Tet {
     type Rest = Rest<3>;
+    type Congruence = Congruence<3>;
     const NODES: usize = 4;
     fn first_inversion(p: &[f64], d: &[f64]) -> Option<f64> {
         let (p1, p2, p3) = (edge(p, 1), edge(p, 2), edge(p, 3));
@@ -84,6 +143,9 @@ pub struct Elastic<E: ?Sized, S: Simplex> {
     elements: Vec<usize>,
     rest: Vec<S::Rest>,
     barrier: bool,
+    projection: Projection,
+    /// Per element when `projection` is not `FSpace` (else empty).
+    congruence: Vec<S::Congruence>,
     _kind: PhantomData<S>,
 }
 
@@ -204,7 +266,7 @@ impl<E: Energy<3> + ?Sized> Elastic<E, Tet> {
 impl<E, S, const D: usize> Elastic<E, S>
 where
     E: Energy<D> + ?Sized,
-    S: Simplex<Rest = Rest<D>>,
+    S: Simplex<Rest = Rest<D>, Congruence = Congruence<D>>,
     Space<D>: Dim<D>,
 {
     /// From precomputed rest data (one per element; indices are checked by the solver).
@@ -221,7 +283,35 @@ where
             elements: elements.as_flattened().to_vec(),
             rest,
             barrier,
+            projection: Projection::FSpace,
+            congruence: Vec::new(),
             _kind: PhantomData,
+        }
+    }
+
+    /// Use `projection` for the element Hessians (default [`Projection::FSpace`]);
+    /// computes the rest factors M^{±½} of every element when needed.
+    pub fn with_projection(mut self, projection: Projection) -> Self {
+        self.congruence = match projection {
+            Projection::FSpace => Vec::new(),
+            _ => self.rest.iter().map(Rest::congruence).collect(),
+        };
+        self.projection = projection;
+        self
+    }
+
+    /// The projection in use.
+    pub fn projection(&self) -> Projection {
+        self.projection
+    }
+
+    /// Whether element `s` gets the exact element projection.
+    #[inline]
+    fn exact(&self, s: usize) -> bool {
+        match self.projection {
+            Projection::FSpace => false,
+            Projection::Element => true,
+            Projection::Hybrid { min_cond } => self.congruence[s].cond() > min_cond,
         }
     }
 
@@ -249,7 +339,7 @@ where
 impl<E, S, const D: usize> Term<D> for Elastic<E, S>
 where
     E: Energy<D> + ?Sized + 'static,
-    S: Simplex<Rest = Rest<D>>,
+    S: Simplex<Rest = Rest<D>, Congruence = Congruence<D>>,
     Space<D>: Dim<D>,
 {
     fn name(&self) -> &str {
@@ -288,7 +378,12 @@ where
         if self.barrier && !Self::inside(&p) {
             return outside(grad, hess);
         }
-        let ev = element_eval(&*self.energy, &self.rest[s], &p, filter, hess.is_some());
+        let (e, rest, want) = (&*self.energy, &self.rest[s], hess.is_some());
+        let ev = if want && self.exact(s) {
+            element_eval_projected(e, rest, &self.congruence[s], &p, filter, true)
+        } else {
+            element_eval(e, rest, &p, filter, want)
+        };
         let n = D * S::NODES;
         for (i, g) in grad.iter_mut().enumerate().take(n) {
             *g = ev.grad[i];

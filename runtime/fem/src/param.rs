@@ -25,7 +25,7 @@ use ecc_mesh::{TriMesh, TutteWeights, tutte_embedding};
 use ecc_runtime::Energy;
 use serde::{Deserialize, Serialize};
 
-use crate::elastic::{Elastic, Tri};
+use crate::elastic::{Elastic, Projection, Tri};
 use crate::error::FemError;
 use crate::newton::params::NewtonParams;
 use crate::newton::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
@@ -44,6 +44,8 @@ pub struct ParamOptions {
     pub tutte: TutteWeights,
     /// Newton parameters (`energy_scale` is overwritten when `mean_energy`).
     pub newton: NewtonParams,
+    /// How the element Hessians are projected (see [`Projection`]).
+    pub projection: Projection,
 }
 
 impl Default for ParamOptions {
@@ -53,6 +55,7 @@ impl Default for ParamOptions {
             mean_energy: true,
             tutte: TutteWeights::Uniform,
             newton: NewtonParams::default(),
+            projection: Projection::default(),
         }
     }
 }
@@ -168,7 +171,8 @@ pub fn prepare<E: Energy<2> + ?Sized + 'static>(
         Elastic::<E, Tri>::surface(energy, &scaled, &mesh.triangles)?
     } else {
         elastic0
-    };
+    }
+    .with_projection(opts.projection);
     let rest_area = elastic.total_measure();
     let mut newton = opts.newton.clone();
     if opts.mean_energy {

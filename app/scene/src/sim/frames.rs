@@ -175,6 +175,9 @@ fn summarize<const D: usize>(
         scene: ctx.file.name(),
         scene_file: ctx.file.display.clone(),
         mode: mode.to_string(),
+        projection: super::build::projection(&ctx.file.scene.solver)
+            .name()
+            .into(),
         mesh: ctx.mesh_stats(rest_measure),
         energy,
         effects: ctx.effects(),

@@ -15,7 +15,7 @@ use ecc_fem::{FemError, NewtonResult, NewtonStatus, Term};
 use ecc_mesh::{TriMesh, TutteWeights};
 use ecc_runtime::Energy;
 
-use super::build::newton_params;
+use super::build::{newton_params, projection};
 use super::context::{Context, FinalState, RunReport, energy_stats, finish, term_stats};
 use super::engine::status_name;
 use super::observer::{INTERRUPTED, Observer};
@@ -92,6 +92,7 @@ fn problem(
             _ => TutteWeights::Uniform,
         },
         newton: newton_params(&scene.solver, 1.0),
+        projection: projection(&scene.solver),
     };
     let key = if scene.mesh.file.is_some() {
         "mesh.file"
@@ -222,6 +223,7 @@ pub(crate) fn run_parameterization(
         scene: file.name(),
         scene_file: file.display.clone(),
         mode: "parameterization".into(),
+        projection: projection(&file.scene.solver).name().into(),
         mesh: ctx.mesh_stats(problem.input_area),
         energy: estats,
         effects: ctx.effects(),

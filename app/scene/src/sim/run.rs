@@ -9,6 +9,7 @@ use std::time::Instant;
 use ecc_mesh::{boundary_loops, tet_boundary_faces};
 use ecc_runtime::Energy;
 
+use super::build;
 use super::context::{Context, RunOptions, RunReport, output_folder};
 use super::frames::run_frames;
 use super::observer::Observer;
@@ -108,7 +109,8 @@ fn run_inner(
                 .map_err(|e| energy_error(file, e))?
                 .into();
             let rest: Vec<[f64; 2]> = mesh.positions.iter().map(|p| [p[0], p[1]]).collect();
-            let body = Body::planar(rest, &mesh.triangles, e);
+            let body = Body::planar(rest, &mesh.triangles, e)
+                .with_projection(build::projection(&file.scene.solver));
             let boundary = boundary_loops(&mesh.triangles)
                 .map(|l| l.into_iter().flatten().collect())
                 .unwrap_or_else(|_| (0..mesh.positions.len()).collect());
@@ -120,7 +122,8 @@ fn run_inner(
                 .energy3(&req)
                 .map_err(|e| energy_error(file, e))?
                 .into();
-            let body = Body::volume(mesh.positions.clone(), &mesh.tets, e);
+            let body = Body::volume(mesh.positions.clone(), &mesh.tets, e)
+                .with_projection(build::projection(&file.scene.solver));
             let mut boundary: Vec<usize> = tet_boundary_faces(&mesh.tets)
                 .into_iter()
                 .flatten()
