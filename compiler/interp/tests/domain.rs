@@ -74,3 +74,22 @@ fn barrier_flag_is_the_limit_at_zero_det() {
         assert_eq!(e.info().barrier, barrier, "{src}");
     }
 }
+
+#[test]
+fn many_conditions_are_all_tested() {
+    // 40 distinct conditions I2 − k/100 > 0: more guard outputs than the
+    // stack buffers hold (the allocating path), each one able to fail.
+    let terms: Vec<String> = (1..=40)
+        .map(|k| format!("exp(log(I2 - {k}/100))"))
+        .collect();
+    let src = format!("psi = {}", terms.join(" + "));
+    let e = energy::<2>(&src);
+    // I2 = 0.45 passes all 40; I2 = 0.395 fails only the last (k = 40).
+    let s = [0.45f64.sqrt(), 0.0];
+    assert!(e.psi(&s).is_finite() && e.spectral(&s).psi.is_finite());
+    let s = [0.395f64.sqrt(), 0.0];
+    assert_eq!(e.psi(&s), f64::INFINITY);
+    assert_eq!(e.spectral(&s).psi, f64::INFINITY);
+    let want: f64 = (1..=40).map(|k| 0.45 - k as f64 / 100.0).sum();
+    assert!((e.psi(&[0.45f64.sqrt(), 0.0]) - want).abs() < 1e-12);
+}
