@@ -22,7 +22,6 @@
 
 use std::sync::Arc;
 
-use ecc_fem::elastic::Projection;
 use ecc_fem::{Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
 
 use super::engine::{Engine, Slots};
@@ -31,7 +30,7 @@ use crate::counters::{Counter, Counters};
 use crate::dynamics::Dynamics;
 use crate::error::SceneError;
 use crate::handles::{Handle, build_handle, vector};
-use crate::spec::{FilterKind, GroundKind, LinearKind, ProjectionKind, SceneFile, SolverSpec};
+use crate::spec::{FilterKind, GroundKind, LinearKind, SceneFile, SolverSpec};
 use crate::terms::{
     Blend, Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping, vertex_masses,
 };
@@ -65,17 +64,13 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
             LinearKind::Cholesky => LinearSolver::Cholesky,
             LinearKind::Pcg => LinearSolver::Pcg,
         },
+        factor_reuse: if s.factor_reuse.unwrap_or(false) {
+            ecc_fem::linear::FactorReuse::STALE_CG
+        } else {
+            ecc_fem::linear::FactorReuse::OFF
+        },
         energy_scale: scale,
         ..NewtonParams::default()
-    }
-}
-
-/// The element projection of `[solver] projection`.
-pub fn projection(s: &SolverSpec) -> Projection {
-    match s.projection {
-        ProjectionKind::FSpace => Projection::FSpace,
-        ProjectionKind::Element => Projection::Element,
-        ProjectionKind::Hybrid => Projection::hybrid(),
     }
 }
 
