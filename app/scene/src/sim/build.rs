@@ -22,6 +22,7 @@
 
 use std::sync::Arc;
 
+use ecc_fem::elastic::Projection;
 use ecc_fem::{Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
 
 use super::engine::{Engine, Slots};
@@ -30,7 +31,7 @@ use crate::counters::{Counter, Counters};
 use crate::dynamics::Dynamics;
 use crate::error::SceneError;
 use crate::handles::{Handle, build_handle, vector};
-use crate::spec::{FilterKind, GroundKind, LinearKind, SceneFile, SolverSpec};
+use crate::spec::{FilterKind, GroundKind, LinearKind, ProjectionKind, SceneFile, SolverSpec};
 use crate::terms::{
     Blend, Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping, vertex_masses,
 };
@@ -71,6 +72,15 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
         },
         energy_scale: scale,
         ..NewtonParams::default()
+    }
+}
+
+/// The element projection of `[solver] projection`.
+pub fn projection(s: &SolverSpec) -> Projection {
+    match s.projection {
+        ProjectionKind::FSpace => Projection::FSpace,
+        ProjectionKind::Element => Projection::Element,
+        ProjectionKind::Hybrid => Projection::hybrid(),
     }
 }
 

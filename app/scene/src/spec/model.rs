@@ -360,6 +360,20 @@ pub enum LinearKind {
     Pcg,
 }
 
+/// How element Hessians are made positive semi-definite (`ecc_fem::elastic::Projection`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ProjectionKind {
+    /// Filter the analytic F-space eigenvalues (no eigensolve).
+    #[default]
+    FSpace,
+    /// The exact projection of each element Hessian (a 4×4 / 9×9
+    /// eigensolve on indefinite elements only).
+    Element,
+    /// `element` on elements far from isotropic, `f-space` elsewhere.
+    Hybrid,
+}
+
 /// Newton options.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -388,6 +402,9 @@ pub struct SolverSpec {
     /// not on 2D parameterisations).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factor_reuse: Option<bool>,
+    /// `f-space` (default), `element` or `hybrid`.
+    #[serde(default)]
+    pub projection: ProjectionKind,
     /// Quasi-static handle moves are split into this many solves per frame
     /// (default 1; halved further automatically while a move would invert
     /// an element of a barrier energy).
