@@ -8,7 +8,9 @@
 //!   from the previous frame to this one in `substeps` solves, each
 //!   warm-started from the previous; a move that would make the objective
 //!   infinite (an element of a barrier energy inverted by the handle jump)
-//!   is halved until it is feasible (down to 1/1024 of a frame);
+//!   is halved until it is feasible (down to 1/1024 of a substep): the
+//!   library's handle deformation, [`ecc_fem::deform::move_handles`], driven
+//!   by [`super::handle_move::FrameMove`];
 //! * **dynamic**: `steps_per_frame` time steps (see [`crate::dynamics`]),
 //!   each started from the inertial prediction x̃ (or from x_n when x̃ is
 //!   infeasible), with the Rayleigh stiffness snapshot taken at x_n.
@@ -17,18 +19,19 @@ use std::any::Any;
 use std::sync::Arc;
 use std::time::Instant;
 
-use ecc_fem::{
-    Filter, IterationRecord, NewtonResult, NewtonSolver, NewtonStatus, Term, TermTiming,
-};
+use ecc_fem::deform::{MoveEnd, Substeps, feasible, move_handles};
+use ecc_fem::{Filter, NewtonSolver, Term};
 use rayon::prelude::*;
 
+use super::handle_move::{FrameMove, place_handles, set_t, t_of};
+use super::journal::{Journal, Recording};
 use super::observer::Observer;
 use crate::body::Body;
 use crate::counters::Counters;
 use crate::dynamics::Dynamics;
 use crate::handles::Handle;
-use crate::summary::{FrameStats, SolveLog, SolvePoint};
-use crate::terms::{Blend, Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping};
+use crate::summary::FrameStats;
+use crate::terms::{Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping};
 
 /// Where each effect term sits in the solver's term list.
 #[derive(Clone, Copy, Debug, Default)]
@@ -75,15 +78,8 @@ pub struct Engine<const D: usize> {
     pub x: Vec<[f64; D]>,
     /// Counters shared by the terms.
     pub counters: Arc<Counters>,
-    /// Every Newton solve so far.
-    pub log: Vec<SolveLog>,
-    /// Per-term cost summed over all solves.
-    pub timings: Vec<TermTiming>,
-    /// Set when a solve failed in a way that makes further frames meaningless.
-    pub stopped: Option<String>,
-    /// Seconds spent inside Newton solves so far (the time axis of the
-    /// convergence plot: output writing between frames is not counted).
-    solve_seconds: f64,
+    /// Every Newton solve so far, and why the run stopped (if it did).
+    pub journal: Journal,
 }
 
 fn downcast<const D: usize, T: Term<D>>(t: &dyn Term<D>) -> Option<&T> {
@@ -120,42 +116,17 @@ impl<const D: usize> Engine<D> {
             filter,
             x,
             counters,
-            log: Vec::new(),
-            timings: Vec::new(),
-            stopped: None,
-            solve_seconds: 0.0,
+            journal: Journal::default(),
         }
-    }
-
-    /// Seconds spent inside Newton solves so far.
-    pub fn solve_seconds(&self) -> f64 {
-        self.solve_seconds
     }
 
     fn term(&self, slot: usize) -> &dyn Term<D> {
         self.solver.terms()[slot].as_ref()
     }
 
-    /// Write every handle's positions at (fractional) `frame` into `x`.
-    fn place_handles(&mut self, frame: f64) {
-        for h in &self.handles {
-            for (&v, p) in h.vertices.iter().zip(h.positions_at(frame)) {
-                self.x[v] = p;
-            }
-        }
-    }
-
-    fn set_t(&mut self, t: f64) {
-        if self.slots.blend
-            && let Some(b) = self.solver.term_mut::<Blend<D>>(self.slots.elastic)
-        {
-            b.t = t;
-        }
-    }
-
-    fn t_of(&self, frame: f64) -> Option<f64> {
-        self.interp_steps
-            .map(|n| (frame / n as f64).clamp(0.0, 1.0))
+    /// The term slot of the interpolation blend, if any.
+    fn blend(&self) -> Option<usize> {
+        self.slots.blend.then_some(self.slots.elastic)
     }
 
     /// Σ over a term's stencils of its value at `x` (parallel).
@@ -167,92 +138,26 @@ impl<const D: usize> Engine<D> {
             .sum()
     }
 
-    /// One Newton solve from `self.x`, logged and observed.
-    fn solve(&mut self, frame: usize, obs: &mut dyn Observer) -> NewtonResult {
-        let clock = Instant::now();
-        let offset = self.solve_seconds;
-        let mut points = Vec::new();
-        let mut x = std::mem::take(&mut self.x);
-        // a record describes the iterate at the *start* of its step: it is
-        // plotted at the time that step began (the end of the previous one)
-        let mut began = offset;
-        let result = self.solver.solve_with(&mut x, |rec: &IterationRecord, _| {
-            points.push(SolvePoint {
-                grad_inf: rec.grad_inf,
-                energy: rec.energy,
-                seconds: began,
-            });
-            began = offset + clock.elapsed().as_secs_f64();
-            obs.iteration(frame, rec)
+    /// One Newton solve from `self.x`, recorded and observed.
+    fn solve(&mut self, frame: usize, obs: &mut dyn Observer) {
+        let mut rec = Recording::start(self.journal.solve_seconds);
+        let result = self.solver.solve_with(&mut self.x, |r, _| {
+            rec.iteration(r);
+            obs.iteration(frame, r)
         });
-        self.x = x;
-        self.solve_seconds += clock.elapsed().as_secs_f64();
-        let result = match result {
-            Ok(r) => r,
-            Err(e) => {
-                // positions were checked when the engine was built: a bug
-                self.stopped = Some(format!("solver rejected the positions: {e}"));
-                return failed_result();
-            }
-        };
-        if result.status == NewtonStatus::Interrupted {
-            self.stopped = Some(super::observer::INTERRUPTED.into());
-        }
-        points.push(SolvePoint {
-            grad_inf: result.grad_inf,
-            energy: result.energy,
-            seconds: began,
-        });
-        for t in &result.terms {
-            match self.timings.iter_mut().find(|a| a.name == t.name) {
-                Some(a) => {
-                    a.value_passes += t.value_passes;
-                    a.value_seconds += t.value_seconds;
-                    a.assembly_passes += t.assembly_passes;
-                    a.assembly_seconds += t.assembly_seconds;
-                }
-                None => self.timings.push(t.clone()),
-            }
-        }
-        self.log.push(SolveLog {
-            frame,
-            status: status_name(&result.status),
-            iterations: result.iterations,
-            points,
-            times: result.times,
-        });
-        match &result.status {
-            NewtonStatus::NonFinite(bad) => {
-                self.stopped = Some(format!(
-                    "non-finite {} in term `{}` (stencil {}) at frame {frame}",
-                    bad.quantity, bad.term, bad.stencil
-                ));
-            }
-            NewtonStatus::BadDirection { slope } => {
-                self.stopped = Some(format!(
-                    "non-descent Newton direction (slope {slope:e}) at frame {frame}"
-                ));
-            }
-            NewtonStatus::FactorizationFailed { shift } => {
-                self.stopped = Some(format!(
-                    "Cholesky failed (shift {shift:e}) at frame {frame}"
-                ));
-            }
-            _ => {}
-        }
-        result
+        self.journal.finish(frame, rec, result.as_ref());
     }
 
     /// Advance to `frame` (1-based) and report it.
     pub fn step_frame(&mut self, frame: usize, obs: &mut dyn Observer) -> FrameStats {
         let t0 = Instant::now();
-        let first_log = self.log.len();
+        let first_log = self.journal.log.len();
         if self.dynamics.is_some() {
             self.dynamic_frame(frame, obs);
         } else {
             self.quasi_static_frame(frame, obs);
         }
-        let solves = &self.log[first_log..];
+        let solves = &self.journal.log[first_log..];
         let mut stats = self.frame_stats(frame);
         stats.solves = solves.len();
         stats.iterations = solves.iter().map(|s| s.iterations).sum();
@@ -267,46 +172,46 @@ impl<const D: usize> Engine<D> {
         stats
     }
 
+    /// The handles (and t) from frame − 1 to frame through the library's
+    /// handle deformation (see the module docs).
     fn quasi_static_frame(&mut self, frame: usize, obs: &mut dyn Observer) {
-        let start = (frame - 1) as f64;
-        let base = 1.0 / self.substeps as f64;
-        let mut done = 0.0f64;
-        let mut step = base;
-        let saved = self.x.clone();
-        while done < 1.0 - 1e-12 && self.stopped.is_none() {
-            let f = (done + step).min(1.0);
-            self.place_handles(start + f);
-            if let Some(t) = self.t_of(start + f) {
-                self.set_t(t);
+        let substeps = Substeps::new(self.substeps);
+        let blend = self.blend();
+        let mut mv = FrameMove {
+            frame,
+            handles: &self.handles,
+            blend,
+            interp_steps: self.interp_steps,
+            journal: &mut self.journal,
+            obs,
+            recording: None,
+        };
+        match move_handles(&mut self.solver, &mut self.x, substeps, &mut mv) {
+            Err(e) => {
+                // only a solve can fail (a rejected placement is infeasible)
+                let rec = mv.recording.take().unwrap_or_else(|| Recording::start(0.0));
+                mv.journal.finish(frame, rec, Err(&e));
             }
-            let feasible = self.solver.energy(&self.x).is_ok_and(|e| e.is_finite());
-            if !feasible {
-                step *= 0.5;
-                if step < base / 1024.0 {
-                    self.x = saved;
-                    self.stopped = Some(format!(
-                        "frame {frame}: moving the handles inverts elements even in 1/1024 of a frame"
-                    ));
-                    return;
-                }
-                // retry from the last feasible positions
-                continue;
+            Ok(m) if matches!(m.end, MoveEnd::Infeasible { .. }) => {
+                self.journal.stopped = Some(format!(
+                    "frame {frame}: moving the handles inverts elements even in 1/{} of a frame",
+                    1u64 << substeps.max_halvings
+                ));
             }
-            self.solve(frame, obs);
-            done = f;
-            step = (step * 2.0).min(base);
+            Ok(_) => {}
         }
     }
 
     fn dynamic_frame(&mut self, frame: usize, obs: &mut dyn Observer) {
         let spf = self.steps_per_frame;
         for s in 0..spf {
-            if self.stopped.is_some() {
+            if self.journal.stopped.is_some() {
                 return;
             }
             let tau = (frame - 1) as f64 + (s + 1) as f64 / spf as f64;
-            if let Some(t) = self.t_of(tau) {
-                self.set_t(t);
+            if let Some(t) = t_of(self.interp_steps, tau) {
+                let blend = self.blend();
+                set_t(&mut self.solver, blend, t);
             }
             let dynamics = self.dynamics.as_ref().expect("dynamic frame");
             let plan = dynamics.plan();
@@ -334,10 +239,10 @@ impl<const D: usize> Engine<D> {
             }
             // start from the prediction, or from x_n if that is infeasible
             self.x.clone_from(&plan.predicted);
-            self.place_handles(tau);
-            if !self.solver.energy(&self.x).is_ok_and(|e| e.is_finite()) {
+            place_handles(&self.handles, tau, &mut self.x);
+            if !feasible(&mut self.solver, &self.x) {
                 self.x.clone_from(&xn);
-                self.place_handles(tau);
+                place_handles(&self.handles, tau, &mut self.x);
             }
             self.solve(frame, obs);
             let x = self.x.clone();
@@ -388,7 +293,7 @@ impl<const D: usize> Engine<D> {
         FrameStats {
             frame,
             time: self.dynamics.as_ref().map(|d| d.steps as f64 * d.h),
-            t: self.t_of(frame as f64),
+            t: t_of(self.interp_steps, frame as f64),
             solves: 0,
             iterations: 0,
             statuses: Vec::new(),
@@ -413,36 +318,4 @@ fn dist<const D: usize>(a: &[f64; D], b: &[f64; D]) -> f64 {
         .map(|c| (a[c] - b[c]) * (a[c] - b[c]))
         .sum::<f64>()
         .sqrt()
-}
-
-/// The status name used in summaries ("Converged", "MaxIterations", …).
-pub fn status_name(s: &NewtonStatus) -> String {
-    match s {
-        NewtonStatus::Converged => "Converged",
-        NewtonStatus::MaxIterations => "MaxIterations",
-        NewtonStatus::LineSearchFailed { .. } => "LineSearchFailed",
-        NewtonStatus::NonFinite(_) => "NonFinite",
-        NewtonStatus::BadDirection { .. } => "BadDirection",
-        NewtonStatus::FactorizationFailed { .. } => "FactorizationFailed",
-        NewtonStatus::Interrupted => "Interrupted",
-    }
-    .to_string()
-}
-
-fn failed_result() -> NewtonResult {
-    NewtonResult {
-        status: NewtonStatus::Interrupted,
-        iterations: 0,
-        initial_energy: f64::NAN,
-        energy: f64::NAN,
-        initial_grad_inf: f64::NAN,
-        grad_inf: f64::NAN,
-        unknowns: 0,
-        linear_solver: ecc_fem::LinearSolver::Auto,
-        symbolic_analyses: 0,
-        numeric_factorizations: 0,
-        times: Default::default(),
-        terms: Vec::new(),
-        records: Vec::new(),
-    }
 }

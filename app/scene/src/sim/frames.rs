@@ -106,14 +106,14 @@ fn step_frames<const D: usize>(
         let s = engine.step_frame(frame, obs);
         obs.frame_done(&s);
         stats.push(s);
-        let last = frame == frames || engine.stopped.is_some();
+        let last = frame == frames || engine.journal.stopped.is_some();
         if frame % every == 0 || last {
             write(out, &format!("frame_{frame:04}"), &engine.x)?;
         }
         if keep_for_picture(frame, frames, 5) || last {
             shots.push((frame, engine.x.clone()));
         }
-        if engine.stopped.is_some() {
+        if engine.journal.stopped.is_some() {
             break;
         }
     }
@@ -167,6 +167,7 @@ fn summarize<const D: usize>(
         "quasi_static"
     };
     let final_energy = engine
+        .journal
         .log
         .last()
         .and_then(|l| l.points.last())
@@ -181,7 +182,7 @@ fn summarize<const D: usize>(
         mesh: ctx.mesh_stats(rest_measure),
         energy,
         effects: ctx.effects(),
-        terms: term_stats(engine.solver.terms(), &engine.timings),
+        terms: term_stats(engine.solver.terms(), &engine.journal.timings),
         counters: counters.values(),
         handles: engine
             .handles
@@ -195,17 +196,17 @@ fn summarize<const D: usize>(
         newton_iterations: stats.iter().map(|s| s.iterations).sum(),
         converged_frames: stats.iter().skip(1).filter(|s| s.converged).count(),
         status: RunStatus::of(
-            engine.stopped.is_some(),
+            engine.journal.stopped.is_some(),
             stats.iter().skip(1).filter(|s| s.converged).count(),
             stats.len().saturating_sub(1),
         ),
         warnings: warnings(ctx, &stats),
         frames: stats,
-        solves: engine.log.clone(),
-        stopped: engine.stopped.clone(),
+        solves: engine.journal.log.clone(),
+        stopped: engine.journal.stopped.clone(),
         final_energy,
         setup_seconds: 0.0,
-        newton: Summary::newton_split(&engine.log),
+        newton: Summary::newton_split(&engine.journal.log),
         output_seconds: 0.0,
         wall_seconds: 0.0,
         outputs: Vec::new(),

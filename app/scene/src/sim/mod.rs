@@ -6,6 +6,8 @@ pub mod build;
 mod context;
 pub mod engine;
 mod frames;
+mod handle_move;
+mod journal;
 pub mod observer;
 mod param;
 mod run;

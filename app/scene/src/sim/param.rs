@@ -17,7 +17,7 @@ use ecc_runtime::Energy;
 
 use super::build::{newton_params, projection};
 use super::context::{Context, FinalState, RunReport, energy_stats, finish, term_stats};
-use super::engine::status_name;
+use super::journal::status_name;
 use super::observer::{INTERRUPTED, Observer};
 use crate::counters::Counters;
 use crate::error::SceneError;
