@@ -140,6 +140,194 @@ pub fn frame_count<const D: usize>(file: &SceneFile, handles: &[Handle<D>]) -> u
     if s.effects.inertia.is_some() { 50 } else { 1 }
 }
 
+/// The solver's terms as they are added, and where each effect sits.
+struct TermList<const D: usize> {
+    terms: Vec<Box<dyn Term<D>>>,
+    slots: Slots,
+}
+
+impl<const D: usize> TermList<D> {
+    /// Append a term and return its slot.
+    fn push(&mut self, term: Box<dyn Term<D>>) -> usize {
+        self.terms.push(term);
+        self.terms.len() - 1
+    }
+}
+
+/// What the inertia effect adds besides its terms.
+struct Inertia<const D: usize> {
+    mass: Arc<MassMatrix<D>>,
+    dynamics: Dynamics<D>,
+    steps_per_frame: usize,
+}
+
+/// The handles of the scene and the vertices they fix (handles must not overlap).
+fn scene_handles<const D: usize>(
+    file: &SceneFile,
+    body: &Body<D>,
+    vertex_map: &[Option<usize>],
+) -> Result<(Vec<Handle<D>>, Vec<usize>), SceneError> {
+    let specs = &file.scene.effects.handles;
+    let mut taken = vec![None; body.n_vertices()];
+    let mut handles = Vec::with_capacity(specs.len());
+    for (i, h) in specs.iter().enumerate() {
+        handles.push(build_handle::<D>(i, h, &body.rest, vertex_map, &mut taken)?);
+    }
+    let fixed = handles
+        .iter()
+        .flat_map(|h| h.vertices.iter().copied())
+        .collect();
+    Ok((handles, fixed))
+}
+
+/// The elastic term, or the interpolation blend between the rest shape and
+/// `rest2` (slot 0).
+fn elastic_term<const D: usize>(
+    list: &mut TermList<D>,
+    body: &Body<D>,
+    rest2: Option<&[[f64; D]]>,
+    counters: &Arc<Counters>,
+) -> Result<(), SceneError> {
+    let elastic = body.elastic().map_err(setup_err)?;
+    let slot = match rest2 {
+        Some(r2) => {
+            let second = body.elastic_at(r2).map_err(|e| {
+                SceneError::invalid(
+                    "effects.interpolate",
+                    format!("the second rest shape is not usable: {e}"),
+                )
+            })?;
+            let blend = Blend::new(elastic, second, counters.clone())
+                .map_err(|m| SceneError::invalid("effects.interpolate", m))?;
+            list.slots.blend = true;
+            list.push(Box::new(blend))
+        }
+        None => list.push(elastic),
+    };
+    list.slots.elastic = slot;
+    Ok(())
+}
+
+/// The gravity term, if the scene has gravity; returns the body's weight
+/// Σ m_v |g|.
+fn gravity_term<const D: usize>(
+    list: &mut TermList<D>,
+    file: &SceneFile,
+    body: &Body<D>,
+    counters: &Arc<Counters>,
+) -> Result<Option<f64>, SceneError> {
+    let fx = &file.scene.effects;
+    let Some(g) = fx.gravity.as_ref() else {
+        return Ok(None);
+    };
+    let g = vector::<D>("effects.gravity", g)?;
+    let masses = vertex_masses(body, fx.density.unwrap_or(1.0));
+    let gnorm = g.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let weight = masses.iter().sum::<f64>() * gnorm;
+    list.slots.gravity = Some(list.push(Box::new(Gravity::new(&masses, g, counters.clone()))));
+    Ok(Some(weight))
+}
+
+/// Inertia and its damping terms, if the scene has inertia.
+fn inertia_terms<const D: usize>(
+    list: &mut TermList<D>,
+    file: &SceneFile,
+    body: &Body<D>,
+    counters: &Arc<Counters>,
+) -> Result<Option<Inertia<D>>, SceneError> {
+    let fx = &file.scene.effects;
+    let Some(spec) = &fx.inertia else {
+        return Ok(None);
+    };
+    let n = body.n_vertices();
+    let density = fx.density.unwrap_or(1.0);
+    let m = Arc::new(MassMatrix::build(body, density, spec.mass, counters));
+    let inertia = MassQuadratic::new(
+        "inertia",
+        Counter::InertiaPass,
+        m.clone(),
+        n,
+        counters.clone(),
+    );
+    list.slots.inertia = Some(list.push(Box::new(inertia)));
+    if let Some(d) = &fx.damping {
+        if d.alpha > 0.0 {
+            let mut q = MassQuadratic::new(
+                "damping_mass",
+                Counter::DampingPass,
+                m.clone(),
+                n,
+                counters.clone(),
+            );
+            q.coefficient = d.alpha;
+            list.slots.damping_mass = Some(list.push(Box::new(q)));
+        }
+        if d.beta > 0.0 {
+            let mut k =
+                StiffnessDamping::new(body.elastic().map_err(setup_err)?, n, counters.clone());
+            k.coefficient = d.beta;
+            list.slots.damping_stiffness = Some(list.push(Box::new(k)));
+        }
+    }
+    let v0 = spec
+        .velocity
+        .as_ref()
+        .map(|v| vector::<D>("effects.inertia.velocity", v))
+        .transpose()?
+        .unwrap_or([0.0; D]);
+    Ok(Some(Inertia {
+        mass: m,
+        dynamics: Dynamics::new(spec.integrator, spec.dt, body.rest.clone(), v0),
+        steps_per_frame: spec.steps_per_frame.unwrap_or(1),
+    }))
+}
+
+/// The ground term, if the scene has a ground (defaults in the module docs;
+/// `weight` is the body's weight under gravity).
+fn ground_term<const D: usize>(
+    list: &mut TermList<D>,
+    file: &SceneFile,
+    body: &Body<D>,
+    boundary: Vec<usize>,
+    weight: Option<f64>,
+    counters: &Arc<Counters>,
+) -> Result<(), SceneError> {
+    let Some(gs) = &file.scene.effects.ground else {
+        return Ok(());
+    };
+    let normal = match &gs.normal {
+        Some(nv) => vector::<D>("effects.ground.normal", nv)?,
+        None => up::<D>(),
+    };
+    let dhat = gs.dhat.unwrap_or(1e-3 * bbox_diagonal(&body.rest));
+    let nb = boundary.len().max(1) as f64;
+    let w = weight.unwrap_or_else(|| body.total_rest_measure());
+    let kappa = gs.stiffness.unwrap_or(10.0 * w / (nb * dhat));
+    let ground = Ground::new(
+        boundary,
+        normal,
+        gs.height,
+        gs.kind,
+        dhat,
+        kappa,
+        counters.clone(),
+    );
+    if gs.kind == GroundKind::Barrier {
+        let d = ground.min_distance(&body.rest);
+        if !(d > 0.0) {
+            return Err(SceneError::invalid(
+                "effects.ground.height",
+                format!(
+                    "the body starts at distance {d:.4} from the ground; a barrier needs \
+                     every vertex strictly above it (lower the ground or move the mesh)"
+                ),
+            ));
+        }
+    }
+    list.slots.ground = Some(list.push(Box::new(ground)));
+    Ok(())
+}
+
 /// Build the engine (see the module docs).
 pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<D>, SceneError> {
     let EngineInput {
@@ -150,149 +338,36 @@ pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<
         rest2,
         counters,
     } = input;
-    let fx = &file.scene.effects;
-    let n = body.n_vertices();
-
-    // handles → fixed vertices
-    let mut taken = vec![None; n];
-    let mut handles = Vec::with_capacity(fx.handles.len());
-    for (i, h) in fx.handles.iter().enumerate() {
-        handles.push(build_handle::<D>(i, h, &body.rest, vertex_map, &mut taken)?);
+    let (handles, fixed) = scene_handles(file, &body, vertex_map)?;
+    let mut list = TermList {
+        terms: Vec::new(),
+        slots: Slots::default(),
+    };
+    elastic_term(&mut list, &body, rest2.as_deref(), &counters)?;
+    if let Some(t) = crate::terms::fibre::fibre_term(file, &body)? {
+        list.push(t);
     }
-    let fixed: Vec<usize> = handles
-        .iter()
-        .flat_map(|h| h.vertices.iter().copied())
-        .collect();
-
-    let mut terms: Vec<Box<dyn Term<D>>> = Vec::new();
-    let mut slots = Slots::default();
-
-    // elastic or interpolation blend
-    let elastic = body.elastic().map_err(setup_err)?;
-    match &rest2 {
-        Some(r2) => {
-            let second = body.elastic_at(r2).map_err(|e| {
-                SceneError::invalid(
-                    "effects.interpolate",
-                    format!("the second rest shape is not usable: {e}"),
-                )
-            })?;
-            let blend = Blend::new(elastic, second, counters.clone())
-                .map_err(|m| SceneError::invalid("effects.interpolate", m))?;
-            slots.blend = true;
-            terms.push(Box::new(blend));
-        }
-        None => terms.push(elastic),
-    }
-    slots.elastic = 0;
-
-    let density = fx.density.unwrap_or(1.0);
-    let g = fx
-        .gravity
-        .as_ref()
-        .map(|g| vector::<D>("effects.gravity", g))
-        .transpose()?;
-    let mut weight = None;
-    if let Some(g) = g {
-        let masses = vertex_masses(&body, density);
-        let gnorm = g.iter().map(|c| c * c).sum::<f64>().sqrt();
-        weight = Some(masses.iter().sum::<f64>() * gnorm);
-        slots.gravity = Some(terms.len());
-        terms.push(Box::new(Gravity::new(&masses, g, counters.clone())));
-    }
-
-    let mut mass = None;
-    let mut dynamics = None;
-    let mut steps_per_frame = 1;
-    if let Some(spec) = &fx.inertia {
-        let m = Arc::new(MassMatrix::build(&body, density, spec.mass, &counters));
-        slots.inertia = Some(terms.len());
-        terms.push(Box::new(MassQuadratic::new(
-            "inertia",
-            Counter::InertiaPass,
-            m.clone(),
-            n,
-            counters.clone(),
-        )));
-        if let Some(d) = &fx.damping {
-            if d.alpha > 0.0 {
-                let mut q = MassQuadratic::new(
-                    "damping_mass",
-                    Counter::DampingPass,
-                    m.clone(),
-                    n,
-                    counters.clone(),
-                );
-                q.coefficient = d.alpha;
-                slots.damping_mass = Some(terms.len());
-                terms.push(Box::new(q));
-            }
-            if d.beta > 0.0 {
-                let mut k =
-                    StiffnessDamping::new(body.elastic().map_err(setup_err)?, n, counters.clone());
-                k.coefficient = d.beta;
-                slots.damping_stiffness = Some(terms.len());
-                terms.push(Box::new(k));
-            }
-        }
-        let v0 = spec
-            .velocity
-            .as_ref()
-            .map(|v| vector::<D>("effects.inertia.velocity", v))
-            .transpose()?
-            .unwrap_or([0.0; D]);
-        dynamics = Some(Dynamics::new(
-            spec.integrator,
-            spec.dt,
-            body.rest.clone(),
-            v0,
-        ));
-        steps_per_frame = spec.steps_per_frame.unwrap_or(1);
-        mass = Some(m);
-    }
-
-    if let Some(gs) = &fx.ground {
-        let normal = match &gs.normal {
-            Some(nv) => vector::<D>("effects.ground.normal", nv)?,
-            None => up::<D>(),
-        };
-        let dhat = gs.dhat.unwrap_or(1e-3 * bbox_diagonal(&body.rest));
-        let nb = boundary.len().max(1) as f64;
-        let w = weight.unwrap_or_else(|| body.total_rest_measure());
-        let kappa = gs.stiffness.unwrap_or(10.0 * w / (nb * dhat));
-        let ground = Ground::new(
-            boundary,
-            normal,
-            gs.height,
-            gs.kind,
-            dhat,
-            kappa,
-            counters.clone(),
-        );
-        if gs.kind == GroundKind::Barrier {
-            let d = ground.min_distance(&body.rest);
-            if !(d > 0.0) {
-                return Err(SceneError::invalid(
-                    "effects.ground.height",
-                    format!(
-                        "the body starts at distance {d:.4} from the ground; a barrier needs \
-                         every vertex strictly above it (lower the ground or move the mesh)"
-                    ),
-                ));
-            }
-        }
-        slots.ground = Some(terms.len());
-        terms.push(Box::new(ground));
-    }
-
+    let weight = gravity_term(&mut list, file, &body, &counters)?;
+    let inertia = inertia_terms(&mut list, file, &body, &counters)?;
+    ground_term(&mut list, file, &body, boundary, weight, &counters)?;
     let scale = 1.0 / body.total_rest_measure();
     let params = newton_params(&file.scene.solver, scale);
-    let solver = NewtonSolver::new(n, terms, &fixed, params).map_err(setup_err)?;
-    let interp_steps = fx.interpolate.as_ref().map(|i| i.steps.unwrap_or(10));
+    let n = body.n_vertices();
+    let solver = NewtonSolver::new(n, list.terms, &fixed, params).map_err(setup_err)?;
+    let interp_steps = file
+        .scene
+        .effects
+        .interpolate
+        .as_ref()
+        .map(|i| i.steps.unwrap_or(10));
+    let (mass, dynamics, steps_per_frame) = match inertia {
+        Some(i) => (Some(i.mass), Some(i.dynamics), i.steps_per_frame),
+        None => (None, None, 1),
+    };
     Ok(Engine::new(
         body,
         solver,
-        slots,
+        list.slots,
         handles,
         mass,
         dynamics,
