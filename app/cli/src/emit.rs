@@ -66,9 +66,9 @@ pub fn run(args: &EmitArgs) -> Result<(), CliError> {
                 .clone()
                 .unwrap_or_else(|| type_name_from_stem(&loaded.name));
             let opts = GenOptions::named(type_name);
-            generate_pretty(&loaded.module, &opts).map_err(|e| CliError::Codegen {
+            generate_pretty(&loaded.module, &opts).map_err(|source| CliError::Codegen {
                 path: loaded.shown.clone(),
-                message: e.to_string(),
+                source,
             })?
         }
         EmitKind::Cpp => {
@@ -76,10 +76,10 @@ pub fn run(args: &EmitArgs) -> Result<(), CliError> {
                 .name
                 .clone()
                 .unwrap_or_else(|| type_name_from_stem(&loaded.name));
-            generate_cpp(&loaded.module, &CppOptions::named(type_name)).map_err(|e| {
+            generate_cpp(&loaded.module, &CppOptions::named(type_name)).map_err(|source| {
                 CliError::Codegen {
                     path: loaded.shown.clone(),
-                    message: e.to_string(),
+                    source,
                 }
             })?
         }

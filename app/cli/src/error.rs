@@ -46,13 +46,14 @@ pub enum CliError {
         #[source]
         source: std::io::Error,
     },
-    /// Code generation or the report failed.
-    #[error("error: cannot generate code for `{path}`: {message}")]
+    /// Code generation failed.
+    #[error("error: cannot generate code for `{path}`: {source}")]
     Codegen {
         /// The energy file.
         path: String,
-        /// The generator's message.
-        message: String,
+        /// The generator's error.
+        #[source]
+        source: ecc_codegen::CodegenError,
     },
     /// The command line is incomplete in a way clap cannot express.
     #[error("error: {0}")]

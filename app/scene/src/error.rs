@@ -16,8 +16,45 @@ pub struct Location {
     pub column: usize,
 }
 
+/// Why a file could not be written (the source of [`SceneError::Write`]).
+#[derive(Debug, thiserror::Error)]
+pub enum WriteFailure {
+    /// The operating system's error.
+    #[error("{0}")]
+    Io(#[from] std::io::Error),
+    /// The mesh writer's error.
+    #[error("{0}")]
+    Mesh(#[from] ecc_mesh::MeshError),
+    /// The document could not be encoded.
+    #[error("{0}")]
+    Json(#[from] serde_json::Error),
+}
+
+/// Why the output folder cannot be used (the source of [`SceneError::Output`]).
+#[derive(Debug, thiserror::Error)]
+pub enum OutputFailure {
+    /// The path names something else.
+    #[error("it exists and is not a folder")]
+    NotAFolder,
+    /// The folder (or a parent) could not be created.
+    #[error("{0}")]
+    Create(#[source] std::io::Error),
+    /// The probe file could not be written.
+    #[error("cannot write `{path}`: {source}")]
+    Probe {
+        /// The probe file.
+        path: String,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The probe file could not be removed.
+    #[error("{0}")]
+    RemoveProbe(#[source] std::io::Error),
+}
+
 /// Everything that can be wrong with a scene before or while it runs.
-#[derive(Debug, PartialEq)]
+#[derive(Debug)]
 pub enum SceneError {
     /// The TOML text itself is wrong: syntax, an unknown key, a wrong type,
     /// a missing key. `message` already names the key and its table.
@@ -45,22 +82,22 @@ pub enum SceneError {
     Read {
         /// The path as given.
         path: String,
-        /// The operating system's message.
-        message: String,
+        /// The operating system's error.
+        source: std::io::Error,
     },
     /// The output folder cannot be created or written (checked before any work).
     Output {
         /// The folder.
         path: String,
         /// Why.
-        message: String,
+        source: OutputFailure,
     },
     /// An output file could not be written.
     Write {
         /// The file.
         path: String,
         /// Why.
-        message: String,
+        source: WriteFailure,
     },
     /// The solver could not be set up (a bug or an unusable mesh; the
     /// library's error is kept as the source).
@@ -134,11 +171,11 @@ impl fmt::Display for SceneError {
                 prefix(f, file, at)?;
                 write!(f, "`{key}`: {message}")
             }
-            SceneError::Read { path, message } => write!(f, "cannot read `{path}`: {message}"),
-            SceneError::Output { path, message } => {
-                write!(f, "output folder `{path}` cannot be written: {message}")
+            SceneError::Read { path, source } => write!(f, "cannot read `{path}`: {source}"),
+            SceneError::Output { path, source } => {
+                write!(f, "output folder `{path}` cannot be written: {source}")
             }
-            SceneError::Write { path, message } => write!(f, "cannot write `{path}`: {message}"),
+            SceneError::Write { path, source } => write!(f, "cannot write `{path}`: {source}"),
             SceneError::Setup { what, source } => write!(f, "setting up {what}: {source}"),
         }
     }
@@ -148,7 +185,10 @@ impl std::error::Error for SceneError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             SceneError::Setup { source, .. } => Some(source),
-            _ => None,
+            SceneError::Read { source, .. } => Some(source),
+            SceneError::Output { source, .. } => Some(source),
+            SceneError::Write { source, .. } => Some(source),
+            SceneError::Parse { .. } | SceneError::Invalid { .. } => None,
         }
     }
 }

@@ -8,13 +8,13 @@ use std::path::{Path, PathBuf};
 
 use ecc_mesh::{PointData, TetMesh, TriMesh, write_obj, write_vtk_tet, write_vtk_tri};
 
-use crate::error::SceneError;
+use crate::error::{OutputFailure, SceneError, WriteFailure};
 
 /// Write `bytes` to `path` atomically ([`ecc_util::write_atomic`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SceneError> {
     ecc_util::write_atomic(path, bytes).map_err(|e| SceneError::Write {
         path: path.display().to_string(),
-        message: e.to_string(),
+        source: e.into(),
     })
 }
 
@@ -29,17 +29,22 @@ impl OutputDir {
     /// Create the folder (and parents) and prove it is writable by writing
     /// and removing a probe file. Fails before any simulation work.
     pub fn prepare(path: &Path) -> Result<Self, SceneError> {
-        let fail = |m: String| SceneError::Output {
+        let fail = |source: OutputFailure| SceneError::Output {
             path: path.display().to_string(),
-            message: m,
+            source,
         };
         if path.exists() && !path.is_dir() {
-            return Err(fail("it exists and is not a folder".into()));
+            return Err(fail(OutputFailure::NotAFolder));
         }
-        fs::create_dir_all(path).map_err(|e| fail(e.to_string()))?;
+        fs::create_dir_all(path).map_err(|e| fail(OutputFailure::Create(e)))?;
         let probe = path.join(".ecc-write-probe");
-        write_atomic(&probe, b"ecc").map_err(|e| fail(e.to_string()))?;
-        fs::remove_file(&probe).map_err(|e| fail(e.to_string()))?;
+        ecc_util::write_atomic(&probe, b"ecc").map_err(|source| {
+            fail(OutputFailure::Probe {
+                path: probe.display().to_string(),
+                source,
+            })
+        })?;
+        fs::remove_file(&probe).map_err(|e| fail(OutputFailure::RemoveProbe(e)))?;
         Ok(OutputDir {
             path: path.to_path_buf(),
             written: Vec::new(),
@@ -72,7 +77,7 @@ impl OutputDir {
     fn mesh_err(&self, name: &str, e: ecc_mesh::MeshError) -> SceneError {
         SceneError::Write {
             path: self.path.join(name).display().to_string(),
-            message: e.to_string(),
+            source: WriteFailure::Mesh(e),
         }
     }
 

@@ -187,7 +187,7 @@ pub(crate) fn finish(
         summary.wall_seconds = ctx.t0.elapsed().as_secs_f64();
         let json = serde_json::to_vec_pretty(&summary).map_err(|e| SceneError::Write {
             path: "summary.json".into(),
-            message: e.to_string(),
+            source: e.into(),
         })?;
         o.write("summary.json", &json)?;
     } else {

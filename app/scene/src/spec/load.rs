@@ -36,9 +36,9 @@ impl SceneFile {
     /// Read and parse a scene file.
     pub fn read(path: impl AsRef<Path>) -> Result<Self, SceneError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Read {
+        let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read {
             path: path.display().to_string(),
-            message: e.to_string(),
+            source,
         })?;
         let base = path
             .parent()
