@@ -176,6 +176,48 @@ impl<E: ?Sized, const D: usize> Fibre<E, D>
 where
     Space<D>: Dim<D>,
 {
+    /// Planar triangles (D = 2) or tets (D = 3) given as a flat element list
+    /// (`D + 1` vertex ids each), one fibre per element.
+    pub fn from_flat(
+        energy: Arc<E>,
+        rest: &[[f64; D]],
+        elements: &[usize],
+        dirs: &[[f64; D]],
+    ) -> Result<Self, FemError> {
+        let k = D + 1;
+        if elements.len() % k != 0 {
+            return Err(FemError::LengthMismatch {
+                what: "element vertex list (D + 1 per element)",
+                expected: elements.len() / k * k,
+                got: elements.len(),
+            });
+        }
+        let n = elements.len() / k;
+        if n == 0 {
+            return Err(FemError::EmptyMesh);
+        }
+        if let Some((q, &v)) = elements.iter().enumerate().find(|&(_, &v)| v >= rest.len()) {
+            return Err(FemError::VertexOutOfRange {
+                term: "fibre".into(),
+                stencil: q / k,
+                vertex: v,
+                n_vertices: rest.len(),
+            });
+        }
+        let r = (0..n)
+            .map(|q| {
+                let el = &elements[k * q..k * q + k];
+                Rest::<D>::new(<Space<D> as Dim<D>>::gather(rest, el)).map_err(|e| {
+                    FemError::DegenerateRest {
+                        element: q,
+                        reason: e.to_string(),
+                    }
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self::build(energy, elements, r, unit_dirs(dirs, n)?))
+    }
+
     fn nodes(&self, s: usize, x: &[[f64; D]]) -> Nodes<D> {
         let k = D + 1;
         <Space<D> as Dim<D>>::gather(x, &self.elements[k * s..k * s + k])

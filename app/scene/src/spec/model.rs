@@ -23,6 +23,9 @@ pub struct Scene {
     pub mesh: MeshSpec,
     /// The material / distortion energy.
     pub energy: EnergySpec,
+    /// A fibre term ψ(I4, I5) added to the body (`[fibers]` or `[fibres]`).
+    #[serde(default, alias = "fibres", skip_serializing_if = "Option::is_none")]
+    pub fibers: Option<super::FibreSpec>,
     /// What acts on the body. Only what is listed here is assembled.
     #[serde(default)]
     pub effects: Effects,

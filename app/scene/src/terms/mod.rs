@@ -4,6 +4,7 @@
 
 pub mod blend;
 pub mod damping;
+pub mod fibre;
 pub mod gravity;
 pub mod ground;
 pub mod mass;
