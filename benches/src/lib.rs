@@ -20,6 +20,7 @@
 // Index loops mirror the maths.
 #![allow(clippy::needless_range_loop)]
 
+pub mod autodiff;
 pub mod cases;
 /// Double-double and the real-number trait, shared with the tests' references.
 pub use ecc_tests::{dd, real};

@@ -21,6 +21,7 @@ fn tiny_report_writes_markdown_pngs_and_json() {
         "## Headline numbers",
         "## 1. Per element",
         "## 2. Per solve",
+        "### Autodiff baseline",
         "## 3. Scaling",
         "## How it is measured",
         "| CPU |",
@@ -47,6 +48,24 @@ fn tiny_report_writes_markdown_pngs_and_json() {
     )
     .expect("valid JSON");
     assert!(json["traces"].as_array().is_some_and(|t| !t.is_empty()));
+    // the autodiff baseline: a row per energy it has a form for (the tiny run
+    // builds all of them), raw Hessians equal to ecc's, and a solve
+    assert_eq!(r.autodiff.rows.len(), 5, "{:?}", r.autodiff.rows);
+    for x in &r.autodiff.rows {
+        assert!(
+            x.max_rel_diff <= 1e-10,
+            "{}D {}: {:e}",
+            x.dim,
+            x.energy,
+            x.max_rel_diff
+        );
+        assert!(x.autodiff_ns > 0.0 && x.analytic_ns > 0.0);
+    }
+    assert!(
+        r.traces
+            .iter()
+            .any(|t| format!("{:?}", t.method) == "Autodiff" && t.points.len() > 1)
+    );
     // the analytic kernel is at least as accurate as f32 on the measured classes
     let f32_err = r
         .accuracy
@@ -79,6 +98,7 @@ fn writing_into_a_file_path_is_an_error_not_a_panic() {
         machine: Default::default(),
         timing: Default::default(),
         accuracy: Default::default(),
+        autodiff: Default::default(),
         problems: vec![],
         traces: vec![],
         solve_limits: (0.0, 0, 0),

@@ -2,6 +2,7 @@
 //! a (projected) element Hessian. See [`Method`] for exactly what each runs.
 
 pub mod accuracy;
+pub mod autodiff;
 pub mod kernels;
 pub mod timing;
 

@@ -43,7 +43,8 @@ pub struct TimingResult {
     pub seconds: f64,
 }
 
-fn batch2(n: usize, inverted: bool, seed: u64) -> Vec<Element2> {
+/// Triangles: random rest shapes and F (every 8th inverted when `inverted`).
+pub(crate) fn batch2(n: usize, inverted: bool, seed: u64) -> Vec<Element2> {
     let mut r = ChaCha8Rng::seed_from_u64(seed);
     let mut out = Vec::with_capacity(n);
     while out.len() < n {
@@ -71,7 +72,8 @@ fn batch2(n: usize, inverted: bool, seed: u64) -> Vec<Element2> {
     out
 }
 
-fn batch3(n: usize, inverted: bool, seed: u64) -> Vec<Element3> {
+/// Tets: random rest shapes and F (every 8th inverted when `inverted`).
+pub(crate) fn batch3(n: usize, inverted: bool, seed: u64) -> Vec<Element3> {
     let mut r = ChaCha8Rng::seed_from_u64(seed);
     let mut out = Vec::with_capacity(n);
     while out.len() < n {

@@ -294,6 +294,7 @@ mod tests {
                 rows: accuracy,
                 ..Default::default()
             },
+            autodiff: Default::default(),
             problems,
             traces,
             solve_limits: (0.0, 0, 0),

@@ -18,7 +18,7 @@ use std::sync::Arc;
 
 use serde::Serialize;
 
-use crate::element::{accuracy, timing};
+use crate::element::{accuracy, autodiff, timing};
 use crate::scaling::{self, ScalingPlan, ScalingRow};
 use crate::solve::{self, SolveLimits, SolveMethod, Trace};
 use machine::Machine;
@@ -61,6 +61,8 @@ pub struct Results {
     pub machine: Machine,
     pub timing: timing::TimingResult,
     pub accuracy: accuracy::AccuracyResult,
+    /// The autodiff baseline per element.
+    pub autodiff: autodiff::AutodiffTiming,
     pub problems: Vec<ProblemInfo>,
     pub traces: Vec<Trace>,
     pub solve_limits: (f64, usize, usize),
@@ -267,6 +269,14 @@ pub fn run(cfg: &Config, log: &mut dyn FnMut(&str)) -> Result<Results, ReportErr
     }
     .map_err(en)?;
     log(&format!("    {:.1} s", accuracy.seconds));
+    log("1/3 per element: autodiff baseline");
+    let autodiff = match cfg.size {
+        Size::Full => autodiff::run(256, 41),
+        Size::Quick => autodiff::run(128, 11),
+        Size::Tiny => autodiff::run(8, 2),
+    }
+    .map_err(en)?;
+    log(&format!("    {:.1} s", autodiff.seconds));
     log("2/3 per solve");
     let (problems, traces) = solves(cfg, log, &mut notes);
     log("3/3 scaling");
@@ -285,6 +295,7 @@ pub fn run(cfg: &Config, log: &mut dyn FnMut(&str)) -> Result<Results, ReportErr
         machine,
         timing,
         accuracy,
+        autodiff,
         problems,
         traces,
         solve_limits: (limits.seconds, limits.newton_iters, limits.proxy_iters),

@@ -16,8 +16,11 @@
 //! with |λ| (Chen et al. 2024's "abs"), with the adaptive trust-region
 //! filter (`FilterPolicy::TrustRegion`: clamp when the previous step's
 //! ρ = actual/predicted decrease is within 1 % of 1, abs otherwise), with
-//! numeric per-element projection ([`terms::NumericProjection`]), and the
-//! first-order Laplacian proxy ([`terms::LaplacianProxy`]). Every run stops at
+//! numeric per-element projection ([`terms::NumericProjection`]), the
+//! first-order Laplacian proxy ([`terms::LaplacianProxy`]), and the autodiff
+//! baseline ([`crate::autodiff::term::AutodiffTerm`]: forward-mode dual
+//! numbers + numeric element projection, what TinyAD does; SD and SNH only,
+//! other energies have no SVD-free form there and are skipped with a note). Every run stops at
 //! ‖∇E‖∞ ≤ 10⁻⁸, at its iteration cap or at its wall-time limit.
 //!
 //! Times come from the solver's own per-iteration records (assembly +
@@ -40,6 +43,8 @@ use ecc_mesh::{TetMesh, TriMesh, TutteWeights, tutte_embedding};
 use ecc_runtime::Energy;
 use serde::Serialize;
 
+use crate::autodiff::AdEnergy;
+use crate::autodiff::term::AutodiffTerm;
 use terms::{LaplacianProxy, NumericProjection};
 
 /// The gradient thresholds the report tabulates.
@@ -53,15 +58,17 @@ pub enum SolveMethod {
     Adaptive,
     NumericProjection,
     LaplacianProxy,
+    Autodiff,
 }
 
 impl SolveMethod {
-    pub const ALL: [SolveMethod; 5] = [
+    pub const ALL: [SolveMethod; 6] = [
         SolveMethod::Clamp,
         SolveMethod::Abs,
         SolveMethod::Adaptive,
         SolveMethod::NumericProjection,
         SolveMethod::LaplacianProxy,
+        SolveMethod::Autodiff,
     ];
 
     /// Label for tables and legends.
@@ -72,6 +79,7 @@ impl SolveMethod {
             SolveMethod::Adaptive => "adaptive (clamp/abs by ρ)",
             SolveMethod::NumericProjection => "numeric elem. projection",
             SolveMethod::LaplacianProxy => "Laplacian proxy",
+            SolveMethod::Autodiff => "autodiff + numeric elem. proj.",
         }
     }
 }
@@ -164,6 +172,29 @@ fn params(method: SolveMethod, limits: &SolveLimits, scale: f64) -> NewtonParams
     p
 }
 
+/// The term `method` solves with, around the analytic element term `inner`
+/// of `energy` (rest data `rest`).
+fn wrap<const D: usize>(
+    method: SolveMethod,
+    inner: Box<dyn Term<D>>,
+    energy: &str,
+    rest: Vec<ecc_runtime::Rest<D>>,
+) -> Result<Box<dyn Term<D>>, SolveError> {
+    Ok(match method {
+        SolveMethod::NumericProjection => Box::new(NumericProjection::new(inner)),
+        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::new(inner, &rest)),
+        SolveMethod::Autodiff => {
+            let ad = AdEnergy::for_energy(energy, D).ok_or_else(|| {
+                SolveError(format!(
+                    "no autodiff baseline for {energy} in {D}D (no SVD-free form)"
+                ))
+            })?;
+            Box::new(AutodiffTerm::new(inner, ad, rest))
+        }
+        _ => inner,
+    })
+}
+
 /// Run a solver from `x`, recording the curve.
 fn record<const D: usize>(
     mut solver: NewtonSolver<D>,
@@ -237,12 +268,8 @@ pub fn parameterization(
         Elastic::<dyn Energy<2>, Tri>::surface(energy, &scaled, &mesh.triangles).map_err(err)?;
     let area = elastic.total_measure();
     let rest = elastic.rest().to_vec();
-    let inner: Box<dyn Term<2>> = Box::new(elastic);
-    let term: Box<dyn Term<2>> = match method {
-        SolveMethod::NumericProjection => Box::new(NumericProjection::new(inner)),
-        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::new(inner, &rest)),
-        _ => inner,
-    };
+    let name = elastic.energy().name().to_string();
+    let term = wrap(method, Box::new(elastic), &name, rest)?;
     let solver = NewtonSolver::new(
         mesh.positions.len(),
         vec![term],
@@ -328,12 +355,8 @@ pub fn deformation(
         Elastic::<dyn Energy<3>, Tet>::new(energy, &mesh.positions, &mesh.tets).map_err(err)?;
     let volume = elastic.total_measure();
     let rest = elastic.rest().to_vec();
-    let inner: Box<dyn Term<3>> = Box::new(elastic);
-    let term: Box<dyn Term<3>> = match method {
-        SolveMethod::NumericProjection => Box::new(NumericProjection::new(inner)),
-        SolveMethod::LaplacianProxy => Box::new(LaplacianProxy::new(inner, &rest)),
-        _ => inner,
-    };
+    let name = elastic.energy().name().to_string();
+    let term = wrap(method, Box::new(elastic), &name, rest)?;
     let (handles, mut x) = handle_setup(mesh);
     let solver = NewtonSolver::new(
         mesh.positions.len(),
