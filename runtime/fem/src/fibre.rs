@@ -185,7 +185,7 @@ where
         dirs: &[[f64; D]],
     ) -> Result<Self, FemError> {
         let k = D + 1;
-        if elements.len() % k != 0 {
+        if !elements.len().is_multiple_of(k) {
             return Err(FemError::LengthMismatch {
                 what: "element vertex list (D + 1 per element)",
                 expected: elements.len() / k * k,

@@ -36,8 +36,8 @@ impl Term<3> for Load {
         g: &mut [f64],
         h: Option<&mut [f64]>,
     ) -> f64 {
-        for i in 0..3 {
-            g[i] = -self.force[i];
+        for (gi, fi) in g.iter_mut().zip(&self.force) {
+            *gi = -fi;
         }
         if let Some(h) = h {
             h[..9].fill(0.0);
