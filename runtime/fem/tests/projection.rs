@@ -12,7 +12,10 @@ use nalgebra::SMatrix;
 
 /// One near-equilateral and one needle triangle, compressed and sheared so
 /// that ARAP's Hessian is indefinite on both.
-fn problem() -> (Vec<[f64; 2]>, Vec<[usize; 3]>, Vec<[f64; 2]>) {
+/// Rest positions, triangles, deformed positions.
+type Problem = (Vec<[f64; 2]>, Vec<[usize; 3]>, Vec<[f64; 2]>);
+
+fn problem() -> Problem {
     let rest = vec![[0.0, 0.0], [1.0, 0.0], [0.5, 0.85], [3.0, 0.1]];
     let tris = vec![[0, 1, 2], [1, 3, 2]];
     let x = rest
@@ -54,7 +57,7 @@ fn projections_of_the_elastic_term() {
         conds[0] < HYBRID_MIN_COND && conds[1] > HYBRID_MIN_COND,
         "{conds:?}"
     );
-    for s in 0..2 {
+    for (s, &cond) in conds.iter().enumerate() {
         let raw = hessian(&fspace, s, &x, Filter::None);
         let f = hessian(&fspace, s, &x, Filter::Clamp);
         let e = hessian(&element, s, &x, Filter::Clamp);
@@ -66,11 +69,7 @@ fn projections_of_the_elastic_term() {
             (e - want).amax() < 1e-10 * scale,
             "element {s}: exact projection"
         );
-        assert_eq!(
-            h,
-            if conds[s] > HYBRID_MIN_COND { e } else { f },
-            "hybrid {s}"
-        );
+        assert_eq!(h, if cond > HYBRID_MIN_COND { e } else { f }, "hybrid {s}");
         // the raw Hessian is the same whatever the projection
         assert_eq!(hessian(&element, s, &x, Filter::None), raw);
     }
