@@ -1,7 +1,5 @@
 //! The generated struct and its `Energy<D>` impls.
 
-use std::collections::HashMap;
-
 use ecc_dsl::{DimIr, Id, Module, PairIr, PairKind, ScaleIr, Sym};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::{format_ident, quote};
@@ -11,6 +9,7 @@ use crate::error::CodegenError;
 use crate::options::{GenOptions, Visibility};
 use crate::plan::{Plan, Region, Root, is_keyword, unique};
 use crate::render::Ex;
+use crate::roots::{hints, psi_roots};
 use crate::summary::{dim_facts, pair_label, pairs, params_line};
 
 /// Local names the generated functions use for their own purposes.
@@ -327,21 +326,6 @@ fn leaf_namer<'c>(ctx: &'c Ctx<'_>) -> impl Fn(Sym) -> String + 'c {
     }
 }
 
-/// Names for the invariant derivatives Ψ1, Ψ2, Ψ3, Ψ11, ….
-fn hints(d: &DimIr) -> HashMap<Id, String> {
-    let mut h = HashMap::new();
-    if let Some(inv) = &d.d_inv {
-        for (k, &id) in inv.d1.iter().enumerate() {
-            h.entry(id).or_insert(format!("psi_i{}", k + 1));
-        }
-        let names = ["i1i1", "i2i2", "i3i3", "i1i2", "i1i3", "i2i3"];
-        for (n, &id) in names.iter().zip(&inv.d2) {
-            h.entry(id).or_insert(format!("psi_{n}"));
-        }
-    }
-    h
-}
-
 /// `let s1 = sigma[0]; …`, parameters and invariants, as the plan needs them.
 fn prelude(ctx: &Ctx, dim: u8, plan: &Plan, extra_sigma: &[usize]) -> TokenStream {
     let leaves = plan.leaves();
@@ -425,18 +409,6 @@ fn energy_impl(ctx: &Ctx, d: &DimIr, name: &str) -> TokenStream {
             #param_fns
         }
     }
-}
-
-/// Ψ's root and the roots of its active domain conditions.
-fn psi_roots(d: &DimIr) -> Vec<Root> {
-    let mut roots = vec![Root {
-        id: d.psi,
-        region: Region::Psi,
-        name: "psi".into(),
-        bind: true,
-    }];
-    roots.extend(domain::roots(d));
-    roots
 }
 
 /// `psi.is_finite()`, and every active domain condition (`&& i3 > 0.0`).

@@ -62,6 +62,7 @@ mod options;
 mod plan;
 mod render;
 mod report;
+mod roots;
 mod summary;
 mod syntax;
 

@@ -2,7 +2,6 @@
 //! energy struct with `psi`, `spectral` and the `eval*` entry points per
 //! dimension. Function bodies come from the same [`Plan`] as the Rust code.
 
-use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use ecc_dsl::{DimIr, Id, Module, PairIr, PairKind, ScaleIr, Sym};
@@ -12,6 +11,7 @@ use super::{CPP_RUNTIME, CppOptions, CppRuntime};
 use crate::error::CodegenError;
 use crate::options::GenOptions;
 use crate::plan::{Plan, Region, Root};
+use crate::roots::{hints, psi_roots};
 use crate::summary::{dim_facts, pair_label, params_line};
 
 /// Locals of the generated functions (and namespaces they name): no
@@ -401,37 +401,6 @@ fn lets(plan: &Plan, region: Region, indent: &str) -> String {
         let _ = writeln!(out, "{indent}const double {name} = {};", cpp(&ex));
     }
     out
-}
-
-/// Names for the invariant derivatives Ψ1, Ψ2, Ψ3, Ψ11, … (as in Rust).
-fn hints(d: &DimIr) -> HashMap<Id, String> {
-    let mut h = HashMap::new();
-    if let Some(inv) = &d.d_inv {
-        for (k, &id) in inv.d1.iter().enumerate() {
-            h.entry(id).or_insert(format!("psi_i{}", k + 1));
-        }
-        let names = ["i1i1", "i2i2", "i3i3", "i1i2", "i1i3", "i2i3"];
-        for (n, &id) in names.iter().zip(&inv.d2) {
-            h.entry(id).or_insert(format!("psi_{n}"));
-        }
-    }
-    h
-}
-
-fn psi_root(d: &DimIr) -> Root {
-    Root {
-        id: d.psi,
-        region: Region::Psi,
-        name: "psi".into(),
-        bind: true,
-    }
-}
-
-/// Ψ's root and the roots of its active domain conditions.
-fn psi_roots(d: &DimIr) -> Vec<Root> {
-    let mut roots = vec![psi_root(d)];
-    roots.extend(crate::domain::roots(d));
-    roots
 }
 
 /// `if (!(a > 0.0 && …)) <then>` for the active domain conditions (empty
