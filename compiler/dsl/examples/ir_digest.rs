@@ -133,6 +133,13 @@ fn main() {
                 inputs.push((format!("gen-{}-{n}", f.name()), energy(f, n)));
             }
         }
+        // Many distinct transcendental subterms (sizes where the rational
+        // content of a sum, lcm(1…n), is small, medium and beyond 2^64).
+        for f in [Family::Exps, Family::Logs, Family::ExpPoly] {
+            for n in [3, 10, 40, 100] {
+                inputs.push((format!("gen-{}-{n}", f.name()), energy(f, n)));
+            }
+        }
     }
     for (name, src) in inputs {
         if show {

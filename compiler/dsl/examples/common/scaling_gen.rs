@@ -14,15 +14,24 @@ pub enum Family {
     Sig,
     /// [`Family::Inv`] with every 8th term replaced by an exp/log subterm.
     Trans,
+    /// Σ_k c_k exp(I1/k): n distinct transcendental subterms.
+    Exps,
+    /// Σ_k c_k log(I2 + k): n distinct logarithms.
+    Logs,
+    /// Σ_k c_k (I2 − k)² exp(I3/k): distinct exponentials times polynomials.
+    ExpPoly,
 }
 
 impl Family {
-    /// The family named `s` (`inv`, `sig`, `trans`).
+    /// The family named `s` (`inv`, `sig`, `trans`, `exps`, `logs`, `exppoly`).
     pub fn parse(s: &str) -> Option<Family> {
         match s {
             "inv" => Some(Family::Inv),
             "sig" => Some(Family::Sig),
             "trans" => Some(Family::Trans),
+            "exps" => Some(Family::Exps),
+            "logs" => Some(Family::Logs),
+            "exppoly" => Some(Family::ExpPoly),
             _ => None,
         }
     }
@@ -33,6 +42,9 @@ impl Family {
             Family::Inv => "inv",
             Family::Sig => "sig",
             Family::Trans => "trans",
+            Family::Exps => "exps",
+            Family::Logs => "logs",
+            Family::ExpPoly => "exppoly",
         }
     }
 }
@@ -114,6 +126,9 @@ pub fn energy(f: Family, n: usize) -> String {
             Family::Sig => sig_symmetric(a, b, c),
             Family::Trans if k % 8 == 7 => transcendental(k),
             Family::Trans => inv_monomial(a, b, c),
+            Family::Exps => format!("exp(I1/{})", k + 1),
+            Family::Logs => format!("log(I2 + {})", k + 1),
+            Family::ExpPoly => format!("(I2 - {})^2*exp(I3/{})", k + 1, k + 1),
         };
         src.push_str(&format!("\n  {} * {term}", coefficient(k)));
     }

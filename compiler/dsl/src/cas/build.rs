@@ -29,6 +29,13 @@ use super::graph::Graph;
 use super::node::{Id, Node};
 use super::rat;
 
+/// Largest rational content (numerator + denominator bits) pulled out of a
+/// sum. Beyond it the sum is kept as it is: a content such as
+/// lcm(1…n)⁻¹ (Σ_k c_k/k · x_k, ≈ 1.44 n bits) would give every one of the
+/// n coefficients ≈ 1.44 n bits, a quadratic blow-up of an input of linear
+/// size (e.g. the gradient of Σ_k exp(I1/k)).
+pub const MAX_CONTENT_BITS: u64 = 64;
+
 impl Graph {
     /// The constant 0.
     pub fn zero(&mut self) -> Id {
@@ -101,11 +108,12 @@ impl Graph {
         while let Some(t) = stack.pop() {
             super::graph::count_work(1);
             match self.get(t).clone() {
-                Node::Num(c) => constant += c,
+                Node::Num(c) => constant = rat::add(&constant, &c),
                 Node::Add(children) => stack.extend(children.iter().rev()),
                 _ => {
                     let (c, rest) = self.split_coefficient(t);
-                    *collected.entry(rest).or_insert_with(BigRational::zero) += c;
+                    let e = collected.entry(rest).or_insert_with(BigRational::zero);
+                    *e = rat::add(e, &c);
                 }
             }
         }
@@ -141,7 +149,7 @@ impl Graph {
             while let Some(f) = stack.pop() {
                 super::graph::count_work(1);
                 match self.get(f).clone() {
-                    Node::Num(c) => coef *= c,
+                    Node::Num(c) => coef = rat::mul(&coef, &c),
                     Node::Mul(children) => stack.extend(children.iter().rev()),
                     Node::Pow([b, e]) => bases.entry(b).or_default().push(e),
                     _ => {
@@ -163,7 +171,7 @@ impl Graph {
                 };
                 let p = self.pow(b, e);
                 match self.get(p) {
-                    Node::Num(c) => coef *= c.clone(),
+                    Node::Num(c) => coef = rat::mul(&coef, c),
                     Node::Mul(_) => {
                         again = true;
                         out.push(p);
@@ -198,7 +206,7 @@ impl Graph {
                 if let Some((g, prim)) = self.add_content(base) {
                     match rat::pow_int(&g, n) {
                         Some(gn) => {
-                            coef *= gn;
+                            coef = rat::mul(&coef, &gn);
                             *f = self.powi(prim, n);
                         }
                         None => continue,
@@ -308,8 +316,8 @@ impl Graph {
     }
 
     /// For a sum with positive rational content g ≠ 1 (the gcd of the
-    /// numerators over the lcm of the denominators of its coefficients),
-    /// `(g, sum / g)`.
+    /// numerators over the lcm of the denominators of its coefficients) of at
+    /// most [`MAX_CONTENT_BITS`] bits, `(g, sum / g)`.
     fn add_content(&mut self, add: Id) -> Option<(BigRational, Id)> {
         if let Some(known) = self.contents.get(&add) {
             return known.clone();
@@ -332,11 +340,15 @@ impl Graph {
                 Node::Mul(f) => self.as_num(f[0]).cloned().unwrap_or_else(BigRational::one),
                 _ => BigRational::one(),
             };
-            num = num_integer::Integer::gcd(&num, c.numer());
-            den = num_integer::Integer::lcm(&den, c.denom());
+            num = rat::gcd(&num, c.numer());
+            den = rat::lcm(&den, c.denom());
+            if den.bits() > MAX_CONTENT_BITS {
+                return None;
+            }
         }
-        let g = BigRational::new(num, den);
-        if g.is_one() || g.is_zero() {
+        // Coprime: a prime dividing every numerator divides no denominator.
+        let g = BigRational::new_raw(num, den);
+        if g.is_one() || g.is_zero() || g.numer().bits() + g.denom().bits() > MAX_CONTENT_BITS {
             return None;
         }
         let inv = self.num(g.recip());

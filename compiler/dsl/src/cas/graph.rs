@@ -25,6 +25,24 @@ pub(crate) fn count_work(ops: u64) {
     WORK.with(|w| w.set(w.get().wrapping_add(ops)));
 }
 
+thread_local! {
+    static LARGEST_NUM: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+}
+
+/// The size in bits (numerator + denominator) of the largest constant added
+/// to any graph on this thread since [`reset_largest_number_bits`]. Exact
+/// arithmetic on constants costs more than linearly in their size, so an
+/// energy written with small constants whose compile builds huge ones (e.g.
+/// a rational content lcm(1…n)) compiles super-linearly; tests bound it.
+pub fn largest_number_bits() -> u64 {
+    LARGEST_NUM.with(|m| m.get())
+}
+
+/// Restart [`largest_number_bits`] from 0.
+pub fn reset_largest_number_bits() {
+    LARGEST_NUM.with(|m| m.set(0));
+}
+
 /// A hash-consed expression DAG (egg/naga style arena).
 ///
 /// Nodes are stored children-before-parents: every child id is smaller than
@@ -73,7 +91,11 @@ impl Graph {
             "children before parents"
         );
         let mask = match &node {
-            Node::Num(_) => 0,
+            Node::Num(r) => {
+                let bits = r.numer().bits() + r.denom().bits();
+                LARGEST_NUM.with(|m| m.set(m.get().max(bits)));
+                0
+            }
             Node::Sym(s) => sym_mask(*s),
             n => n
                 .children()

@@ -10,7 +10,8 @@ mod node;
 mod print;
 pub mod rat;
 
+pub use build::MAX_CONTENT_BITS;
 pub use eval::{Env, Tape, eval, eval_many};
 pub(crate) use graph::count_work;
-pub use graph::{Graph, work_count};
+pub use graph::{Graph, largest_number_bits, reset_largest_number_bits, work_count};
 pub use node::{Id, Node, Sym};

@@ -12,7 +12,7 @@
 //! for the dimension), also inside atoms, so `log(I3)` and `log(s1*s2*s3)`
 //! are the same atom.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use num_rational::BigRational;
 use num_traits::{One, Signed, ToPrimitive};
@@ -208,18 +208,10 @@ impl Converter {
                     .iter()
                     .map(|x| self.memo.get(x).and_then(Option::as_ref))
                     .collect();
-                match kids {
-                    Some(kids) => RatFun::sum(&kids)?,
-                    // Fold up to the undefined term, charging what it charged.
-                    None => {
-                        let mut acc = RatFun::zero();
-                        for x in c {
-                            let Some(r) = child(x) else { return Ok(None) };
-                            acc = acc.add(&r)?;
-                        }
-                        acc
-                    }
-                }
+                // An undefined term makes the sum undefined (no work spent:
+                // summing the terms before it was quadratic and discarded).
+                let Some(kids) = kids else { return Ok(None) };
+                RatFun::sum(&kids)?
             }
             Node::Mul(c) => {
                 let mut acc = RatFun::one();
@@ -345,33 +337,23 @@ impl Converter {
         let m = r.num.monomial_content();
         let rest = r.num.div_mono(&m);
         let c = rest.content();
+        // A huge content (e.g. lcm(1…n)⁻¹ for coefficients 1/k) stays inside:
+        // factoring it out would make every coefficient huge.
+        let c = if c.numer().bits() + c.denom().bits() > crate::cas::MAX_CONTENT_BITS {
+            BigRational::from_integer(c.numer().signum())
+        } else {
+            c
+        };
         let rest = rest.scale(&c.recip());
-        // Net exponent per variable of the monomial parts.
-        let nvars = self.atom_base() + self.atoms.len();
-        let mut net: Vec<i64> = (0..nvars)
-            .map(|i| m.get(i).copied().unwrap_or(0) as i64)
-            .collect();
+        // Net exponent per variable of the monomial parts (sparse: energies
+        // with many atoms have many variables, few of them in any one term).
+        let mut net: BTreeMap<usize, i64> = m.iter().map(|(i, e)| (i, e as i64)).collect();
         let mut den_polys: Vec<(Id, u32)> = Vec::new();
         for (f, e) in &r.den {
-            let lead_vars: Vec<usize> = f
-                .leading()
-                .map(|(m, _)| {
-                    m.iter()
-                        .enumerate()
-                        .filter(|(_, x)| **x > 0)
-                        .map(|(i, _)| i)
-                        .collect()
-                })
-                .unwrap_or_default();
-            let single = f.len() == 1
-                && lead_vars.len() == 1
-                && f.leading().is_some_and(|(m, _)| m[lead_vars[0]] == 1);
-            if single {
-                let v = lead_vars[0];
-                if v >= net.len() {
-                    net.resize(v + 1, 0);
-                }
-                net[v] -= *e as i64;
+            let lead = f.leading().map(|(m, _)| m.clone()).unwrap_or_default();
+            let single = f.len() == 1 && lead.len() == 1 && lead.iter().all(|(_, x)| x == 1);
+            if single && let Some(v) = lead.last_var() {
+                *net.entry(v).or_insert(0) -= *e as i64;
             } else {
                 let fe = self.poly_to_expr(g, f);
                 den_polys.push((fe, *e));
@@ -379,18 +361,21 @@ impl Converter {
         }
         let mut factors: Vec<Id> = vec![g.num(c)];
         let d = self.dim as usize;
-        let k = (0..d).map(|i| net[i]).max().unwrap_or(0);
+        let k = (0..d)
+            .map(|i| net.get(&i).copied().unwrap_or(0))
+            .max()
+            .unwrap_or(0);
         if k < 0 && use_i3 {
             let i3 = g.sym(Sym::I3);
             factors.push(g.powi(i3, k));
-            for x in net.iter_mut().take(d) {
-                *x -= k;
+            for i in 0..d {
+                *net.entry(i).or_insert(0) -= k;
             }
         }
-        for (i, e) in net.iter().enumerate() {
-            if *e != 0 {
+        for (&i, &e) in &net {
+            if e != 0 {
                 let v = self.var_expr(g, i);
-                factors.push(g.powi(v, *e));
+                factors.push(g.powi(v, e));
             }
         }
         factors.push(self.poly_to_expr(g, &rest));
@@ -421,11 +406,9 @@ impl Converter {
         let mut terms = Vec::with_capacity(p.len());
         for (m, c) in p.terms() {
             let mut f = vec![g.num(c.clone())];
-            for (i, e) in m.iter().enumerate() {
-                if *e > 0 {
-                    let v = self.var_expr(g, i);
-                    f.push(g.powi(v, *e as i64));
-                }
+            for (i, e) in m.iter() {
+                let v = self.var_expr(g, i);
+                f.push(g.powi(v, e as i64));
             }
             terms.push(g.product(&f));
         }

@@ -3,6 +3,7 @@
 //! expressions, exact identity tests and exact division.
 
 mod convert;
+mod mono;
 mod polynomial;
 mod ratfun;
 

@@ -1,18 +1,18 @@
 //! Sparse multivariate polynomials over ℚ.
 //!
-//! A monomial is its exponent vector with trailing zeros trimmed, so the
-//! derived `Vec` ordering is the lexicographic monomial order (variable 0 most
-//! significant). The leading term is the largest key.
+//! A monomial is a sparse [`Mono`] (its non-zero exponents), ordered
+//! lexicographically (variable 0 most significant). The leading term is the
+//! largest key.
 
 use std::collections::BTreeMap;
 
+use crate::cas::rat;
+
 use num_bigint::BigInt;
-use num_integer::Integer;
 use num_rational::BigRational;
 use num_traits::{One, Signed, Zero};
 
-/// Exponent vector (trailing zeros trimmed).
-pub type Mono = Vec<u32>;
+pub use super::mono::Mono;
 
 /// Largest number of terms any intermediate polynomial may have; beyond it
 /// the polynomial machinery gives up (answers "unknown"), which keeps every
@@ -71,33 +71,6 @@ fn coeff_bits(c: &BigRational) -> u64 {
     c.numer().bits() + c.denom().bits()
 }
 
-fn trim(mut m: Mono) -> Mono {
-    while m.last() == Some(&0) {
-        m.pop();
-    }
-    m
-}
-
-fn mono_mul(a: &[u32], b: &[u32]) -> Mono {
-    let n = a.len().max(b.len());
-    let v = (0..n)
-        .map(|i| a.get(i).copied().unwrap_or(0) + b.get(i).copied().unwrap_or(0))
-        .collect();
-    trim(v)
-}
-
-/// `a / b` if `b` divides `a`.
-fn mono_div(a: &[u32], b: &[u32]) -> Option<Mono> {
-    if b.len() > a.len() {
-        return None;
-    }
-    let mut v = a.to_vec();
-    for (i, e) in b.iter().enumerate() {
-        v[i] = v[i].checked_sub(*e)?;
-    }
-    Some(trim(v))
-}
-
 impl Poly {
     /// 0.
     pub fn zero() -> Self {
@@ -108,7 +81,7 @@ impl Poly {
     pub fn constant(c: BigRational) -> Self {
         let mut p = Poly::zero();
         if !c.is_zero() {
-            p.terms.insert(Vec::new(), c);
+            p.terms.insert(Mono::one(), c);
         }
         p
     }
@@ -124,19 +97,17 @@ impl Poly {
     }
 
     /// c · x^m.
-    pub fn monomial(c: BigRational, m: &[u32]) -> Self {
+    pub fn monomial(c: BigRational, m: &Mono) -> Self {
         let mut p = Poly::zero();
         if !c.is_zero() {
-            p.terms.insert(trim(m.to_vec()), c);
+            p.terms.insert(m.clone(), c);
         }
         p
     }
 
-    /// The exponent vector x_i^e.
+    /// The monomial x_i^e.
     pub fn unit_mono(i: usize, e: u32) -> Mono {
-        let mut m = vec![0; i + 1];
-        m[i] = e;
-        trim(m)
+        Mono::var(i, e)
     }
 
     /// Whether this is the zero polynomial.
@@ -148,7 +119,7 @@ impl Poly {
     pub fn as_constant(&self) -> Option<BigRational> {
         match self.terms.len() {
             0 => Some(BigRational::zero()),
-            1 => self.terms.get(&Vec::new()).cloned(),
+            1 => self.terms.get(&Mono::one()).cloned(),
             _ => None,
         }
     }
@@ -177,10 +148,8 @@ impl Poly {
     pub fn var_mask(&self) -> u64 {
         let mut mask = 0;
         for m in self.terms.keys() {
-            for (i, e) in m.iter().enumerate() {
-                if *e > 0 {
-                    mask |= 1u64 << i.min(63);
-                }
+            for (i, _) in m.iter() {
+                mask |= 1u64 << i.min(63);
             }
         }
         mask
@@ -223,15 +192,11 @@ impl Poly {
     /// [`MAX_TERMS`] terms or a coefficient it changed exceeds
     /// [`MAX_COEFF_BITS`] (the others were checked when they were made).
     /// After an error `self` is partly updated and must be discarded.
-    pub fn add_shifted(&mut self, other: &Poly, shift: &[u32]) -> Result<(), TooBig> {
+    pub fn add_shifted(&mut self, other: &Poly, shift: &Mono) -> Result<(), TooBig> {
         charge(other.terms.len() as u64)?;
         crate::cas::count_work(other.terms.len() as u64);
         for (m, c) in &other.terms {
-            let key = if shift.is_empty() {
-                m.clone()
-            } else {
-                mono_mul(m, shift)
-            };
+            let key = m.mul(shift);
             match self.terms.entry(key) {
                 std::collections::btree_map::Entry::Vacant(v) => {
                     if coeff_bits(c) > MAX_COEFF_BITS {
@@ -282,12 +247,12 @@ impl Poly {
     }
 
     /// `self · x^m`.
-    pub fn mul_mono(&self, m: &[u32]) -> Poly {
+    pub fn mul_mono(&self, m: &Mono) -> Poly {
         Poly {
             terms: self
                 .terms
                 .iter()
-                .map(|(k, c)| (mono_mul(k, m), c.clone()))
+                .map(|(k, c)| (k.mul(m), c.clone()))
                 .collect(),
         }
     }
@@ -305,7 +270,7 @@ impl Poly {
         let mut r = Poly::zero();
         for (ma, ca) in &self.terms {
             for (mb, cb) in &other.terms {
-                r.add_term(mono_mul(ma, mb), ca * cb);
+                r.add_term(ma.mul(mb), ca * cb);
             }
         }
         r.check()
@@ -345,25 +310,28 @@ impl Poly {
     pub fn monomial_content(&self) -> Mono {
         let mut it = self.terms.keys();
         let Some(first) = it.next() else {
-            return Vec::new();
+            return Mono::one();
         };
         let mut m = first.clone();
         for k in it {
-            m.truncate(k.len());
-            for (i, e) in m.iter_mut().enumerate() {
-                *e = (*e).min(k[i]);
+            if m.is_one() {
+                break;
             }
+            m = m.gcd(k);
         }
-        trim(m)
+        m
     }
 
     /// `self / x^m`, assuming `x^m` divides every term.
-    pub fn div_mono(&self, m: &[u32]) -> Poly {
+    pub fn div_mono(&self, m: &Mono) -> Poly {
+        if m.is_one() {
+            return self.clone();
+        }
         Poly {
             terms: self
                 .terms
                 .iter()
-                .filter_map(|(k, c)| Some((mono_div(k, m)?, c.clone())))
+                .filter_map(|(k, c)| Some((k.div(m)?, c.clone())))
                 .collect(),
         }
     }
@@ -374,13 +342,14 @@ impl Poly {
         let mut num = BigInt::zero();
         let mut den = BigInt::one();
         for c in self.terms.values() {
-            num = num.gcd(c.numer());
-            den = den.lcm(c.denom());
+            num = rat::gcd(&num, c.numer());
+            den = rat::lcm(&den, c.denom());
         }
         if num.is_zero() {
             return BigRational::one();
         }
-        let c = BigRational::new(num, den);
+        // Coprime: a prime dividing every numerator divides no denominator.
+        let c = BigRational::new_raw(num, den);
         match self.leading() {
             Some((_, lc)) if lc.is_negative() => -c,
             _ => c,
@@ -395,7 +364,7 @@ impl Poly {
         let (dm, dc) = (dm.clone(), dc.clone());
         // A monomial divisor: divisible iff it divides every term.
         if d.len() == 1 {
-            if self.terms.keys().any(|m| mono_div(m, &dm).is_none()) {
+            if self.terms.keys().any(|m| m.div(&dm).is_none()) {
                 return None;
             }
             let inv = dc.recip();
@@ -403,19 +372,19 @@ impl Poly {
                 terms: self
                     .terms
                     .iter()
-                    .filter_map(|(m, c)| Some((mono_div(m, &dm)?, c * &inv)))
+                    .filter_map(|(m, c)| Some((m.div(&dm)?, c * &inv)))
                     .collect(),
             });
         }
         let mut rem = self.clone();
         let mut q = Poly::zero();
         while let Some((m, c)) = rem.leading() {
-            let qm = mono_div(m, &dm)?;
+            let qm = m.div(&dm)?;
             let qc = c / &dc;
             charge(d.len() as u64).ok()?;
             // rem -= qc·x^qm·d, in place.
             for (k, x) in &d.terms {
-                rem.add_term(mono_mul(k, &qm), -(x * &qc));
+                rem.add_term(k.mul(&qm), -(x * &qc));
             }
             if rem.len() > MAX_TERMS * 4 {
                 return None;
@@ -429,15 +398,12 @@ impl Poly {
     pub fn coeffs_in(&self, var: usize) -> Vec<Poly> {
         let mut out: Vec<Poly> = Vec::new();
         for (m, c) in &self.terms {
-            let k = m.get(var).copied().unwrap_or(0) as usize;
+            let k = m.get(var) as usize;
             if out.len() <= k {
                 out.resize(k + 1, Poly::zero());
             }
-            let mut rest = m.clone();
-            if var < rest.len() {
-                rest[var] = 0;
-            }
-            out[k].add_term(trim(rest), c.clone());
+            let rest = if k == 0 { m.clone() } else { m.without(var) };
+            out[k].add_term(rest, c.clone());
         }
         out
     }
@@ -446,20 +412,15 @@ impl Poly {
     pub fn signed_permute(&self, perm: &dyn Fn(usize) -> (usize, bool)) -> Poly {
         let mut r = Poly::zero();
         for (m, c) in &self.terms {
-            let mut nm: Mono = Vec::new();
+            let mut pairs: Vec<(usize, u32)> = Vec::with_capacity(m.len());
             let mut negate = false;
-            for (i, e) in m.iter().enumerate() {
-                if *e == 0 {
-                    continue;
-                }
+            for (i, e) in m.iter() {
                 let (j, neg) = perm(i);
-                if nm.len() <= j {
-                    nm.resize(j + 1, 0);
-                }
-                nm[j] += e;
+                pairs.push((j, e));
                 negate ^= neg && e % 2 == 1;
             }
-            r.add_term(trim(nm), if negate { -c.clone() } else { c.clone() });
+            let nm = Mono::from_pairs(pairs);
+            r.add_term(nm, if negate { -c.clone() } else { c.clone() });
         }
         r
     }
@@ -470,7 +431,7 @@ impl Poly {
             terms: self
                 .terms
                 .iter()
-                .filter(|(m, _)| m.get(var).copied().unwrap_or(0) == 0)
+                .filter(|(m, _)| m.get(var) == 0)
                 .map(|(m, c)| (m.clone(), c.clone()))
                 .collect(),
         }

@@ -6,6 +6,8 @@
 //! maximum, never a blind product) and keeps the result readable: SD's
 //! denominators stay powers of σ's instead of expanded products.
 
+use std::collections::{BTreeMap, HashMap};
+
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 
@@ -69,10 +71,8 @@ impl RatFun {
             }
             let (c, m, rest) = normalise(&f);
             r.num = r.num.scale(&num_traits::pow(c.recip(), e as usize));
-            for (i, me) in m.iter().enumerate() {
-                if *me > 0 {
-                    r.push_den(Poly::var(i), me * e);
-                }
+            for (i, me) in m.iter() {
+                r.push_den(Poly::var(i), me * e);
             }
             if rest.as_constant().is_none() {
                 r.push_den(rest, e);
@@ -100,9 +100,11 @@ impl RatFun {
             let (f, e) = &mut self.den[k];
             if f.len() == 1 {
                 // A single variable x: cancel min(e, power of x in the numerator's content).
-                let var = f.leading().and_then(|(m, _)| m.iter().position(|x| *x > 0));
+                let var = f
+                    .leading()
+                    .and_then(|(m, _)| m.iter().next().map(|(v, _)| v));
                 if let Some(v) = var {
-                    let c = content.get(v).copied().unwrap_or(0).min(*e);
+                    let c = content.get(v).min(*e);
                     if c > 0 {
                         *e -= c;
                         self.num = self.num.div_mono(&Poly::unit_mono(v, c));
@@ -162,60 +164,82 @@ impl RatFun {
     }
 
     /// Σ `terms`: the same function, in the same form, as folding
-    /// [`RatFun::add`] from 0 left to right, but in one pass.
+    /// [`RatFun::add`] from 0 left to right, but in linear time.
     ///
-    /// When every denominator factor is a single variable (polynomials, or
-    /// powers of σ, parameters and atoms in the denominators — the usual
-    /// case), each numerator is lifted to the common denominator
-    /// D = Π x^(max exponent) by a monomial shift and accumulated in place:
-    /// linear in the total size, where the fold copies the growing sum at
-    /// every step (quadratic in the number of terms). The results agree:
-    /// once cancelled, a single-variable factor x keeps the exponent
-    /// max(0, −ord_x(f)) whatever common denominator the sum was formed over,
-    /// so the form N / Π x^e depends only on the function f. For polynomial
-    /// terms the budget charges and size checks are those of the fold too.
-    /// Other denominators (non-monomial factors) are folded as before.
+    /// The terms are grouped by the non-monomial factors of their
+    /// denominators (in order of first appearance; usually there is one
+    /// group, e.g. all terms over σ powers, or all over (σ0 + σ1)). Within a
+    /// group every numerator is lifted to the group's common denominator
+    /// D = Π x^(max exponent) · (the shared factors) by a monomial shift and
+    /// accumulated in place: linear in the total size, where the fold copies
+    /// the growing sum at every step (quadratic in the number of terms). The
+    /// groups' sums are then folded. The results agree: once cancelled, a
+    /// factor f keeps the least exponent a with (sum)·f^a a polynomial
+    /// whatever common denominator the sum was formed over, so the form
+    /// N / Π f^e depends only on the function (for pairwise coprime factors,
+    /// which normalised factors of distinct singular sets are). The budget
+    /// charges and size checks are made on the in-place sums.
     pub fn sum(terms: &[&RatFun]) -> Result<RatFun, TooBig> {
-        let monomial_dens = terms
-            .iter()
-            .all(|t| t.den.iter().all(|(f, _)| f.len() == 1));
-        if !monomial_dens {
-            let mut acc = RatFun::zero();
-            for t in terms {
-                acc = acc.add(t)?;
-            }
-            return Ok(acc);
-        }
-        // The common denominator: per variable, the largest exponent.
-        let mut common: Vec<u32> = Vec::new();
-        let var_of = |f: &Poly| f.leading().map_or(0, |(m, _)| m.len() - 1);
+        type Key = Vec<(Poly, u32)>;
+        let mut groups: Vec<(Key, Vec<&RatFun>)> = Vec::new();
+        let mut index: HashMap<Key, usize> = HashMap::new();
         for t in terms {
-            for (f, e) in &t.den {
-                let v = var_of(f);
-                if common.len() <= v {
-                    common.resize(v + 1, 0);
-                }
-                common[v] = common[v].max(*e);
+            let key: Key = t
+                .den
+                .iter()
+                .filter(|(f, _)| f.len() != 1)
+                .cloned()
+                .collect();
+            let i = *index.entry(key.clone()).or_insert_with(|| {
+                groups.push((key, Vec::new()));
+                groups.len() - 1
+            });
+            groups[i].1.push(t);
+        }
+        let mut acc: Option<RatFun> = None;
+        for (key, members) in groups {
+            let s = RatFun::sum_group(key, &members)?;
+            acc = Some(match acc {
+                None => s,
+                Some(a) => a.add(&s)?,
+            });
+        }
+        Ok(acc.unwrap_or_else(RatFun::zero))
+    }
+
+    /// Σ `terms`, all of whose denominators are `shared` times single
+    /// variables' powers: numerators shifted to the common denominator and
+    /// added in place, then cancelled once.
+    fn sum_group(shared: Vec<(Poly, u32)>, terms: &[&RatFun]) -> Result<RatFun, TooBig> {
+        // The common monomial part: per variable, the largest exponent.
+        let var_of = |f: &Poly| f.leading().and_then(|(m, _)| m.last_var()).unwrap_or(0);
+        let monomial = |t: &RatFun| -> Vec<(usize, u32)> {
+            t.den
+                .iter()
+                .filter(|(f, _)| f.len() == 1)
+                .map(|(f, e)| (var_of(f), *e))
+                .collect()
+        };
+        let mut common: BTreeMap<usize, u32> = BTreeMap::new();
+        for t in terms {
+            for (v, e) in monomial(t) {
+                let c = common.entry(v).or_insert(0);
+                *c = (*c).max(e);
             }
         }
+        let d = Mono::from_pairs(common.iter().map(|(v, e)| (*v, *e)).collect());
         let mut num = Poly::zero();
         for t in terms {
             // num += t.num · D / t.den.
-            let mut shift = common.clone();
-            for (f, e) in &t.den {
-                shift[var_of(f)] -= e;
-            }
-            while shift.last() == Some(&0) {
-                shift.pop();
-            }
+            let shift = d.div(&Mono::from_pairs(monomial(t))).ok_or(TooBig)?;
             num.add_shifted(&t.num, &shift)?;
         }
-        let den = common
-            .iter()
-            .enumerate()
-            .filter(|(_, e)| **e > 0)
-            .map(|(v, e)| (Poly::var(v), *e))
+        let mut den: Vec<(Poly, u32)> = common
+            .into_iter()
+            .filter(|(_, e)| *e > 0)
+            .map(|(v, e)| (Poly::var(v), e))
             .collect();
+        den.extend(shared);
         let mut r = RatFun { num, den };
         r.cancel()?;
         Ok(r)
@@ -346,8 +370,8 @@ mod tests {
 
     /// c · x0^a x1^b + d · x2 (+ 1) over the given denominator factors.
     fn term(c: i64, a: u32, b: u32, d: i64, den: Vec<(Poly, u32)>) -> RatFun {
-        let num = Poly::monomial(int(c), &[a, b])
-            .add(&Poly::monomial(int(d), &[0, 0, 1]))
+        let num = Poly::monomial(int(c), &Mono::from_dense(&[a, b]))
+            .add(&Poly::monomial(int(d), &Mono::var(2, 1)))
             .and_then(|p| p.add(&Poly::one()))
             .unwrap_or_default();
         RatFun::from_parts(num, den).unwrap_or_else(|_| RatFun::zero())
@@ -389,10 +413,31 @@ mod tests {
         let neg = total.neg();
         with_neg.push(&neg);
         assert!(RatFun::sum(&with_neg).is_ok_and(|r| r.is_zero() && r.den.is_empty()));
-        // A non-monomial denominator takes the fold.
-        let poly_den = term(2, 1, 1, 1, vec![(x0_plus_x1, 1)]);
+        // Non-monomial denominators: grouped by their shared factors, summed
+        // in place, the groups folded — the fold's result still.
+        let x0_x2_1 = x0.add(&Poly::var(2)).and_then(|p| p.add(&Poly::one()));
+        let x0_x2_1 = x0_x2_1.unwrap_or_default();
+        let mut poly_dens: Vec<RatFun> = Vec::new();
+        for k in 0..30i64 {
+            let den = match k % 4 {
+                0 => vec![(x0_plus_x1.clone(), 1)],
+                1 => vec![(x0_plus_x1.clone(), 1), (x1.clone(), 2)],
+                2 => vec![(x0_x2_1.clone(), 1 + (k % 3) as u32)],
+                _ => vec![(x0_plus_x1.clone(), 2), (x0_x2_1.clone(), 1)],
+            };
+            poly_dens.push(term(k - 11, (k % 3) as u32, (k % 2) as u32, 3 - k, den));
+        }
+        // A term that cancels a factor of the group's sum.
+        let cancel = term(1, 1, 0, 0, vec![(x0_plus_x1.clone(), 1)]).neg();
+        poly_dens.push(cancel);
         let mut mixed = refs.clone();
-        mixed.insert(3, &poly_den);
+        for (k, t) in poly_dens.iter().enumerate() {
+            mixed.insert((7 * k) % mixed.len(), t);
+        }
         assert_eq!(RatFun::sum(&mixed), Ok(fold(&mixed)));
+        let only: Vec<&RatFun> = poly_dens.iter().collect();
+        assert_eq!(RatFun::sum(&only), Ok(fold(&only)));
+        let same: Vec<&RatFun> = poly_dens.iter().step_by(4).collect();
+        assert_eq!(RatFun::sum(&same), Ok(fold(&same)));
     }
 }
