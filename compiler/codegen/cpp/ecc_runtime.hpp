@@ -745,14 +745,16 @@ ECC_HOST_DEVICE inline void gradient_vec(const double u[D][D], const double w[D]
     }
 }
 
-/// H = weight · Σ over the modes (assemble.rs `modal_sum`): the scaling block
-/// Σ_ij Â_ij p_ii p_jjᵀ and per pair λ_t/2 (p_ji − p_ij)(…)ᵀ + λ_l/2 (p_ji + p_ij)(…)ᵀ,
+/// H = weight · Σ over the finite modes (assemble.rs `modal_parts`): the scaling
+/// block Σ_ij Â_ij p_ii p_jjᵀ and per pair λ_t/2 (p_ji − p_ij)(…)ᵀ + λ_l/2 (p_ji + p_ij)(…)ᵀ,
 /// with p_ab = u_a ⊗ w_b, minus a repeated pair value c handled as
 /// c·(I_d ⊗ G), G_nm = Σ_b w_b,n w_b,m. Upper triangle, then mirrored.
+/// Modes with λ = ±∞ (a pole; raw Hessian only) are kept apart: returns
+/// whether there were any, with P = Σ sign(λ) g gᵀ over them in `p`.
 template <int D, int M>
-ECC_HOST_DEVICE inline void modal_sum(const double u[D][D], const double w[D][M],
-                                      const Filtered<D>& f, double weight,
-                                      double h[D * M][D * M]) {
+ECC_HOST_DEVICE inline bool modal_parts(const double u[D][D], const double w[D][M],
+                                        const Filtered<D>& f, double weight,
+                                        double h[D * M][D * M], double p[D * M][D * M]) {
     constexpr int R = D * M;
     constexpr int pairs = D * (D - 1) / 2;
     double vals[9];
@@ -782,7 +784,17 @@ ECC_HOST_DEVICE inline void modal_sum(const double u[D][D], const double w[D][M]
     double vecs[12][R];
     int upd_l[9], upd_r[9];
     double upd_c[9];
-    int nv = 0, nu = 0;
+    int inf_l[9];
+    double inf_c[9];
+    int nv = 0, nu = 0, ni = 0;
+    // A rank-one update c·v vᵀ (v = vecs[l]): finite, or ±∞ (kept apart).
+    auto push = [&](int l, double c) {
+        if (std::isinf(c)) {
+            inf_l[ni] = l; inf_c[ni] = c; ++ni;
+        } else {
+            upd_l[nu] = l; upd_r[nu] = l; upd_c[nu] = c; ++nu;
+        }
+    };
     if (shift != 0.0) {
         double c = shift * weight;
         for (int n = 0; n < M; ++n)
@@ -802,9 +814,8 @@ ECC_HOST_DEVICE inline void modal_sum(const double u[D][D], const double w[D][M]
         for (int i = 0; i < D; ++i) {
             if (sc[i][i] != 0.0) {
                 for (int x = 0; x < R; ++x) vecs[nv][x] = pii[i][x];
-                upd_l[nu] = nv; upd_r[nu] = nv; upd_c[nu] = sc[i][i] * weight;
+                push(nv, sc[i][i] * weight);
                 ++nv;
-                ++nu;
             }
         }
     } else {
@@ -835,15 +846,13 @@ ECC_HOST_DEVICE inline void modal_sum(const double u[D][D], const double w[D][M]
         detail::outer<D, M>(u[i], w[j], pij);
         if (lt != 0.0) {
             for (int x = 0; x < R; ++x) vecs[nv][x] = pji[x] - pij[x];
-            upd_l[nu] = nv; upd_r[nu] = nv; upd_c[nu] = 0.5 * lt * weight;
+            push(nv, 0.5 * lt * weight);
             ++nv;
-            ++nu;
         }
         if (ll != 0.0) {
             for (int x = 0; x < R; ++x) vecs[nv][x] = pji[x] + pij[x];
-            upd_l[nu] = nv; upd_r[nu] = nv; upd_c[nu] = 0.5 * ll * weight;
+            push(nv, 0.5 * ll * weight);
             ++nv;
-            ++nu;
         }
     }
     for (int i = 0; i < R; ++i) {
@@ -858,6 +867,36 @@ ECC_HOST_DEVICE inline void modal_sum(const double u[D][D], const double w[D][M]
     }
     for (int i = 0; i < R; ++i)
         for (int j = i + 1; j < R; ++j) h[j][i] = h[i][j];
+    if (ni == 0) return false;
+    for (int i = 0; i < R; ++i)
+        for (int j = 0; j < R; ++j) p[i][j] = 0.0;
+    for (int m = 0; m < ni; ++m) {
+        const double* v = vecs[inf_l[m]];
+        double sg = inf_c[m] > 0.0 ? 1.0 : -1.0;
+        for (int i = 0; i < R; ++i)
+            for (int j = 0; j < R; ++j) p[i][j] += sg * v[i] * v[j];
+    }
+    return true;
+}
+
+/// H_xy = sign(P_xy)·∞ where P_xy ≠ 0, a NaN entry staying NaN (assemble.rs
+/// `saturate`).
+template <int N>
+ECC_HOST_DEVICE inline void saturate(double h[N][N], const double p[N][N]) {
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j)
+            if (p[i][j] != 0.0 && !std::isnan(h[i][j]))
+                h[i][j] = p[i][j] > 0.0 ? infinity() : -infinity();
+}
+
+/// H = weight · Σ over the modes (assemble.rs `modal_sum`): [`modal_parts`],
+/// then ±∞ wherever an infinite mode reaches (never ∞·0 = NaN).
+template <int D, int M>
+ECC_HOST_DEVICE inline void modal_sum(const double u[D][D], const double w[D][M],
+                                      const Filtered<D>& f, double weight,
+                                      double h[D * M][D * M]) {
+    double p[D * M][D * M];
+    if (modal_parts<D, M>(u, w, f, weight, h, p)) saturate<D * M>(h, p);
 }
 
 /// Expand the block of nodes 1…K−1 to all K nodes with the zero node-sums
@@ -992,9 +1031,15 @@ ECC_HOST_DEVICE inline ElementEval<D*(D + 1)> eval_element_f(const E& energy,
         double wr[D][D];
         for (int b = 0; b < D; ++b)
             for (int n = 0; n < D; ++n) wr[b][n] = w[b][n + 1];
-        double hr[D * D][D * D];
-        modal_sum<D, D>(u, wr, filtered<D>(s, filter), measure, hr);
+        // Infinite modes' P expanded to node 0 like H (assemble.rs `modal_sum_nodes`).
+        double hr[D * D][D * D], pr[D * D][D * D];
+        bool inf = modal_parts<D, D>(u, wr, filtered<D>(s, filter), measure, hr, pr);
         expand_nodes<D, K>(hr, out.hess);
+        if (inf) {
+            double pn[D * K][D * K];
+            expand_nodes<D, K>(pr, pn);
+            saturate<D * K>(out.hess, pn);
+        }
     }
     out.psi = measure * s.psi;
     return out;

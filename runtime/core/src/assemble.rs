@@ -22,6 +22,24 @@
 //!
 //! Only the upper triangle is accumulated and then mirrored, so every returned
 //! matrix is exactly symmetric.
+//!
+//! **Poles (raw Hessian only).** On an energy's true pole (e.g. σi + σj = 0
+//! for a twist eigenvalue (Ψi + Ψj)/(σi + σj) whose numerator does not
+//! vanish there) a mode's eigenvalue is ±∞ (+∞ by the back ends'
+//! convention). The filters map it to their floor, so only `Filter::None`
+//! sees it. Summed like the finite modes it would give ∞·0 = NaN wherever
+//! the mode vector has a zero component. Instead the infinite modes are
+//! kept apart: with P = Σ_k sign(λ_k) g_k g_kᵀ over the modes with
+//! λ_k = ±∞ (unnormalised g as below; the limit of all of them growing at
+//! one rate), the raw Hessian is
+//!
+//! H_xy = sign(P_xy)·∞ where P_xy ≠ 0, and Σ_{finite modes} λ g_x g_y elsewhere,
+//!
+//! so an entry is infinite exactly where an infinite mode reaches it (a zero
+//! component contributes nothing) and never NaN unless an input was NaN.
+//! For elements P is expanded to node 0 like H before it is applied
+//! ([`modal_sum_nodes`]). The finite case pays one well-predicted test per
+//! update.
 
 use crate::filter::Filter;
 use crate::modes::{Modes, outer};
@@ -212,7 +230,8 @@ impl<const D: usize> Filtered<D> {
 }
 
 /// Σ over the modes, for vectors of length R = D·M built from u_a ⊗ w_b with
-/// w_b ∈ R^M; scaled by `weight`; exactly symmetric.
+/// w_b ∈ R^M; scaled by `weight`; exactly symmetric. Infinite modes (poles,
+/// raw Hessian only) give ±∞ entries, never NaN (see the module docs).
 #[inline(always)]
 pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
     u: &[[f64; D]; D],
@@ -220,6 +239,90 @@ pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
     f: &Filtered<D>,
     weight: f64,
 ) -> [[f64; R]; R] {
+    let (mut h, inf) = modal_parts::<D, M, R>(u, w, f, weight);
+    if let Some(p) = inf {
+        saturate(&mut h, &p);
+    }
+    h
+}
+
+/// [`modal_sum`] over the nodes 1…K−1 of an element (R = D(K−1)) expanded to
+/// all K nodes (N = DK) by [`expand_nodes`]; the infinite modes' P is
+/// expanded the same way before it is applied, so node-0 entries are ±∞
+/// where an infinite mode reaches them (never ∞ − ∞).
+#[inline(always)]
+pub(crate) fn modal_sum_nodes<const D: usize, const K: usize, const R: usize, const N: usize>(
+    u: &[[f64; D]; D],
+    wr: &[[f64; D]; D],
+    f: &Filtered<D>,
+    weight: f64,
+) -> [[f64; N]; N] {
+    let (h, inf) = modal_parts::<D, D, R>(u, wr, f, weight);
+    let mut out = expand_nodes::<D, K, R, N>(&h);
+    if let Some(p) = inf {
+        saturate(&mut out, &expand_nodes::<D, K, R, N>(&p));
+    }
+    out
+}
+
+/// H_xy = sign(P_xy)·∞ where P_xy ≠ 0 (a NaN entry stays NaN).
+#[cold]
+#[inline(never)]
+fn saturate<const N: usize>(h: &mut [[f64; N]; N], p: &[[f64; N]; N]) {
+    for (hr, pr) in h.iter_mut().zip(p.iter()) {
+        for (x, &q) in hr.iter_mut().zip(pr.iter()) {
+            if q != 0.0 && !x.is_nan() {
+                *x = f64::INFINITY.copysign(q);
+            }
+        }
+    }
+}
+
+/// P = Σ sign(c) v vᵀ over the infinite updates (index into `vecs`, c).
+#[cold]
+#[inline(never)]
+fn infinite_part<const R: usize>(vecs: &[[f64; R]; 12], inf: &[(usize, f64)]) -> [[f64; R]; R] {
+    let mut p = [[0.0; R]; R];
+    for &(l, c) in inf {
+        let (v, s) = (&vecs[l], c.signum());
+        for i in 0..R {
+            for j in 0..R {
+                p[i][j] += s * v[i] * v[j];
+            }
+        }
+    }
+    p
+}
+
+/// Record the rank-one update c·v vᵀ (v = `vecs[l]`): with the finite ones,
+/// or, for c = ±∞, with the infinite ones.
+#[inline(always)]
+fn push_update(
+    upd: &mut [(usize, usize, f64); 9],
+    nu: &mut usize,
+    inf: &mut [(usize, f64); 9],
+    ni: &mut usize,
+    l: usize,
+    c: f64,
+) {
+    if c.is_infinite() {
+        inf[*ni] = (l, c);
+        *ni += 1;
+    } else {
+        upd[*nu] = (l, l, c);
+        *nu += 1;
+    }
+}
+
+/// The finite modes' sum (exactly symmetric) and, when some mode is ±∞,
+/// the infinite modes' P (see the module docs).
+#[inline(always)]
+fn modal_parts<const D: usize, const M: usize, const R: usize>(
+    u: &[[f64; D]; D],
+    w: &[[f64; M]; D],
+    f: &Filtered<D>,
+    weight: f64,
+) -> ([[f64; R]; R], Option<[[f64; R]; R]>) {
     debug_assert_eq!(R, D * M);
     let pairs = Spectral::<D>::PAIRS;
     // Shift c: a repeated non-zero value among the pair eigenvalues and, when Â
@@ -254,7 +357,8 @@ pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
     // Left/right vectors and coefficients of the updates H += coef · l rᵀ.
     let mut vecs = [[0.0; R]; 12];
     let mut upd: [(usize, usize, f64); 9] = [(0, 0, 0.0); 9];
-    let (mut nv, mut nu) = (0usize, 0usize);
+    let mut inf: [(usize, f64); 9] = [(0, 0.0); 9];
+    let (mut nv, mut nu, mut ni) = (0usize, 0usize, 0usize);
     let mut h = [[0.0; R]; R];
     if shift != 0.0 {
         let c = shift * weight;
@@ -283,9 +387,8 @@ pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
         for i in 0..D {
             if sc[i][i] != 0.0 {
                 vecs[nv] = pii[i];
-                upd[nu] = (nv, nv, sc[i][i] * weight);
+                push_update(&mut upd, &mut nu, &mut inf, &mut ni, nv, sc[i][i] * weight);
                 nv += 1;
-                nu += 1;
             }
         }
     } else {
@@ -319,17 +422,15 @@ pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
             for x in 0..R {
                 vecs[nv][x] = pji[x] - pij[x];
             }
-            upd[nu] = (nv, nv, 0.5 * lt * weight);
+            push_update(&mut upd, &mut nu, &mut inf, &mut ni, nv, 0.5 * lt * weight);
             nv += 1;
-            nu += 1;
         }
         if ll != 0.0 {
             for x in 0..R {
                 vecs[nv][x] = pji[x] + pij[x];
             }
-            upd[nu] = (nv, nv, 0.5 * ll * weight);
+            push_update(&mut upd, &mut nu, &mut inf, &mut ni, nv, 0.5 * ll * weight);
             nv += 1;
-            nu += 1;
         }
     }
     // Upper triangle, row by row (the row stays in registers across updates).
@@ -349,7 +450,12 @@ pub(crate) fn modal_sum<const D: usize, const M: usize, const R: usize>(
             h[j][i] = h[i][j];
         }
     }
-    h
+    let p = if ni > 0 {
+        Some(infinite_part(&vecs, &inf[..ni]))
+    } else {
+        None
+    };
+    (h, p)
 }
 
 /// Expand the block of nodes 1…K−1 (R = D(K−1)) to all K nodes (N = DK) using

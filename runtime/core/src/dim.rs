@@ -20,7 +20,7 @@ use std::ops::Index;
 
 use nalgebra::{ArrayStorage, SMatrix, SVector};
 
-use crate::assemble::{Filtered, expand_nodes, modal_sum};
+use crate::assemble::{Filtered, modal_sum, modal_sum_nodes};
 use crate::element::{Congruence, ElementEval, Rest, RestError, det};
 use crate::energy::Energy;
 use crate::filter::Filter;
@@ -211,8 +211,8 @@ fn element_kernel<
     let hess = if want_hessian {
         // Nodes 1…K−1 only (w restricted to them), node 0 from the zero node-sums.
         let wr: [[f64; D]; D] = std::array::from_fn(|b| std::array::from_fn(|n| w[b][n + 1]));
-        let hr = modal_sum::<D, D, R>(&u, &wr, &Filtered::new(&s, filter), measure);
-        SMatrix::from_array_storage(ArrayStorage(expand_nodes::<D, K, R, N>(&hr)))
+        let h = modal_sum_nodes::<D, K, R, N>(&u, &wr, &Filtered::new(&s, filter), measure);
+        SMatrix::from_array_storage(ArrayStorage(h))
     } else {
         SMatrix::zeros()
     };
