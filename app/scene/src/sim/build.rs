@@ -347,9 +347,6 @@ pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<
     if let Some(t) = crate::terms::fibre::fibre_term(file, &body)? {
         list.push(t);
     }
-    if let Some(t) = crate::terms::fibre::fibre_term(file, &body)? {
-        list.push(t);
-    }
     let weight = gravity_term(&mut list, file, &body, &counters)?;
     let inertia = inertia_terms(&mut list, file, &body, &counters)?;
     ground_term(&mut list, file, &body, boundary, weight, &counters)?;
