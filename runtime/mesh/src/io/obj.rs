@@ -55,16 +55,17 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ParseError> {
         let Some(key) = toks.next() else { continue };
         match key {
             "v" => {
-                let vals: Vec<&str> = toks.collect();
-                if vals.len() < 2 {
+                // no per-line allocation: read at most x, y, z
+                let (Some(tx), Some(ty)) = (toks.next(), toks.next()) else {
+                    let found = content.split_whitespace().count() - 1;
                     return Err(ParseError::line(
                         line,
-                        format!("vertex needs at least x and y, found {} values", vals.len()),
+                        format!("vertex needs at least x and y, found {found} values"),
                     ));
-                }
-                let x = parse_f64(vals[0], line, "vertex x")?;
-                let y = parse_f64(vals[1], line, "vertex y")?;
-                let z = match vals.get(2) {
+                };
+                let x = parse_f64(tx, line, "vertex x")?;
+                let y = parse_f64(ty, line, "vertex y")?;
+                let z = match toks.next() {
                     Some(t) => parse_f64(t, line, "vertex z")?,
                     None => 0.0,
                 };
@@ -86,16 +87,18 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ParseError> {
                 tex.push([u, v]);
             }
             "f" => {
-                let corners: Vec<&str> = toks.collect();
-                if corners.len() != 3 {
+                let (Some(c0), Some(c1), Some(c2), None) =
+                    (toks.next(), toks.next(), toks.next(), toks.next())
+                else {
+                    let found = content.split_whitespace().count() - 1;
                     return Err(ParseError::line(
                         line,
                         format!(
-                            "face has {} corners: only triangles are supported (triangulate the mesh first)",
-                            corners.len()
+                            "face has {found} corners: only triangles are supported (triangulate the mesh first)"
                         ),
                     ));
-                }
+                };
+                let corners = [c0, c1, c2];
                 let mut tri = [0usize; 3];
                 let mut vts = [None; 3];
                 for (k, c) in corners.iter().enumerate() {
@@ -189,6 +192,25 @@ fn per_vertex_uvs(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn short_vertices_and_non_triangles_are_located_errors() {
+        let e = parse_obj("v 1 2 3\nv 1 # y missing\n").unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "line 2: vertex needs at least x and y, found 1 values"
+        );
+        let e = parse_obj("v 0 0\nv 1 0\nv 1 1\nv 0 1\nf 1 2 3 4\n").unwrap_err();
+        assert!(
+            e.to_string().starts_with("line 5: face has 4 corners"),
+            "{e}"
+        );
+        let e = parse_obj("v 0 0\nv 1 0\nf 1 2\n").unwrap_err();
+        assert!(
+            e.to_string().starts_with("line 3: face has 2 corners"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn reads_triangles_uvs_and_negative_indices() {
