@@ -18,9 +18,12 @@
 //!
 //! Measured (`cargo run --release -p ecc-mesh --example setup_timing`, the
 //! 1M-triangle bumpy disk, best of 3, old and new binaries alternating on the
-//! shared 2-core machine at load 6–8): uniform Tutte 4.45–5.61 s with triplet
-//! assembly + AMD + faer's default threads, 3.55–3.56 s now. Fill: 36.6M
-//! factor entries against AMD's 32.4M, but no AMD analysis (≈0.5 s there).
+//! shared 2-core machine): at load 6–8 the old code (triplet assembly, AMD,
+//! faer's default threads) took 4.45–5.61 s and this one 3.55–3.56 s; a second
+//! A/B at load 4–5 gave 3.49 / 7.29 s old against 4.10 / 8.24 s new. The load
+//! swamps the difference: not shown faster yet, to be re-measured on a quiet
+//! machine. Fill: 36.6M factor entries against AMD's 32.4M; the AMD analysis
+//! it skips took ≈0.5 s.
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::solvers::Solve;
