@@ -6,7 +6,7 @@ mod model;
 mod spans;
 pub mod validate;
 
-pub(crate) use load::suggest as suggest_name;
 pub use fibre::{AroundSpec, FibreSpec};
+pub(crate) use load::suggest as suggest_name;
 pub use load::{SceneFile, data_dir};
 pub use model::*;
