@@ -73,6 +73,8 @@ pub trait Dim<const D: usize>: sealed::Sealed + Copy + Debug + Send + Sync + 'st
     fn eigen_f(svd: &Svd<D>, s: &Spectral<D>) -> (Self::FVals, Self::FVecs);
     /// vec(M), column-major (Smith et al. 2019, eq. 1).
     fn vec(m: &SMatrix<f64, D, D>) -> Self::FVec;
+    /// The d²×d² matrix with entries `entry(i, j)`.
+    fn fmat_from_fn(entry: &mut dyn FnMut(usize, usize) -> f64) -> Self::FMat;
     /// See [`fd_hessian_f`](crate::reference::fd_hessian_f).
     fn fd_hessian_f(
         psi: &dyn Fn(&SMatrix<f64, D, D>) -> f64,
@@ -251,6 +253,10 @@ macro_rules! dim {
 
             fn vec(m: &SMatrix<f64, $d, $d>) -> Self::FVec {
                 SVector::from_fn(|k, _| m[(k % $d, k / $d)])
+            }
+
+            fn fmat_from_fn(entry: &mut dyn FnMut(usize, usize) -> f64) -> Self::FMat {
+                SMatrix::from_fn(|i, j| entry(i, j))
             }
 
             fn fd_hessian_f(
