@@ -129,6 +129,30 @@ pub(crate) fn columns<const D: usize>(m: &SMatrix<f64, D, D>) -> [[f64; D]; D] {
     std::array::from_fn(|j| std::array::from_fn(|i| m[(i, j)]))
 }
 
+/// w_b = β v_b for each right singular vector v_b: w_b[n] = (Dm⁻¹ v_b)[n−1]
+/// for n ≥ 1 and w_b[0] = −Σ_{n≥1} w_b[n] (K = d + 1 nodes). Shared by the
+/// element kernels so that they agree to the bit.
+#[inline]
+pub(crate) fn node_weights<const D: usize, const K: usize>(
+    dm_inv: &SMatrix<f64, D, D>,
+    v: &SMatrix<f64, D, D>,
+) -> [[f64; K]; D] {
+    std::array::from_fn(|b| {
+        let mut wb = [0.0; K];
+        let mut sum = 0.0;
+        for n in 1..K {
+            let mut acc = 0.0;
+            for c in 0..D {
+                acc += dm_inv[(n - 1, c)] * v[(c, b)];
+            }
+            wb[n] = acc;
+            sum += acc;
+        }
+        wb[0] = -sum;
+        wb
+    })
+}
+
 #[inline]
 fn gradient_kernel<const D: usize, const N: usize>(svd: &Svd<D>, s: &Spectral<D>) -> [f64; N] {
     if !svd.is_finite() {
@@ -194,21 +218,7 @@ fn element_kernel<
         return zero(measure * s.psi);
     }
     let u = columns(&svd.u);
-    // w_b = β v_b: w_b[n] = (Dm⁻¹ v_b)[n−1] for n ≥ 1, w_b[0] = −Σ_{n≥1} w_b[n].
-    let w: [[f64; K]; D] = std::array::from_fn(|b| {
-        let mut wb = [0.0; K];
-        let mut sum = 0.0;
-        for n in 1..K {
-            let mut acc = 0.0;
-            for c in 0..D {
-                acc += rest.dm_inv[(n - 1, c)] * svd.v[(c, b)];
-            }
-            wb[n] = acc;
-            sum += acc;
-        }
-        wb[0] = -sum;
-        wb
-    });
+    let w = node_weights::<D, K>(&rest.dm_inv, &svd.v);
     let grad = gradient_vec::<D, K, N>(&u, &w, &s.grad, measure);
     let hess = if want_hessian {
         // Nodes 1…K−1 only (w restricted to them), node 0 from the zero node-sums.

@@ -70,7 +70,7 @@ use nalgebra::{
 
 use super::rest::Rest;
 use crate::assemble::{Filtered, expand_nodes, modal_sum};
-use crate::dim::{Dim, Nodes, Space, columns};
+use crate::dim::{Dim, Nodes, Space, columns, node_weights};
 use crate::element::{ElementEval, element_f};
 use crate::energy::Energy;
 use crate::filter::Filter;
@@ -283,22 +283,7 @@ pub(crate) fn kernel<
         return zero(measure * s.psi);
     }
     let u = columns(&svd.u);
-    // w_b = β v_b: w_b[n] = (Dm⁻¹ v_b)[n−1] for n ≥ 1, w_b[0] = −Σ_{n≥1} w_b[n]
-    // (the same operations as `element_eval`'s kernel, so both agree to the bit).
-    let w: [[f64; K]; D] = std::array::from_fn(|b| {
-        let mut wb = [0.0; K];
-        let mut sum = 0.0;
-        for n in 1..K {
-            let mut acc = 0.0;
-            for c in 0..D {
-                acc += rest.dm_inv[(n - 1, c)] * svd.v[(c, b)];
-            }
-            wb[n] = acc;
-            sum += acc;
-        }
-        wb[0] = -sum;
-        wb
-    });
+    let w = node_weights::<D, K>(&rest.dm_inv, &svd.v);
     let wr: [[f64; D]; D] = std::array::from_fn(|b| std::array::from_fn(|n| w[b][n + 1]));
     let grad = gradient_vec::<D, K, N>(&u, &w, &s.grad, measure);
     if !want_hessian {
