@@ -63,9 +63,23 @@ fn yes(b: bool) -> &'static str {
     if b { "yes" } else { "no" }
 }
 
+/// One dimension's section: the property table, then one subsection per
+/// table or list, in the order a reader follows the derivation.
 fn dim_section(out: &mut String, d: &DimIr) {
-    let n = d.dim as usize;
     let _ = writeln!(out, "## {}D\n", d.dim);
+    property_table(out, d);
+    let _ = writeln!(out, "### Energy\n\nΨ = {}\n", code(d, d.psi));
+    invariant_derivatives(out, d);
+    gradient_list(out, d);
+    scaling_modes(out, d);
+    pair_modes(out, d);
+    divided_differences(out, d);
+    singularities(out, d);
+}
+
+/// The property table: path, domain, barrier, SVD-freedom, sign symmetry,
+/// decoupling (and the isotropy caveat when it was only checked numerically).
+fn property_table(out: &mut String, d: &DimIr) {
     let path = match d.path {
         Path::Invariant => "invariant (Smith et al. 2019, §4 and App. D: Ψ(I1, I2, I3))",
         Path::Stretch => "stretch (Zhu 2020: Ψ(σ), twist/flip as divided differences)",
@@ -85,24 +99,36 @@ fn dim_section(out: &mut String, d: &DimIr) {
         let _ = writeln!(out, "| isotropy | checked numerically only (not proved) |");
     }
     out.push('\n');
-    let _ = writeln!(out, "### Energy\n\nΨ = {}\n", code(d, d.psi));
-    if let Some(inv) = &d.d_inv {
-        let _ = writeln!(out, "### Invariant derivatives\n");
-        let _ = writeln!(out, "| derivative | expression |\n|---|---|");
-        for (k, &id) in inv.d1.iter().enumerate() {
-            let _ = writeln!(out, "| ∂Ψ/∂I{} | {} |", k + 1, code(d, id));
-        }
-        let labels = ["I1 I1", "I2 I2", "I3 I3", "I1 I2", "I1 I3", "I2 I3"];
-        for (l, &id) in labels.iter().zip(&inv.d2) {
-            let _ = writeln!(out, "| ∂²Ψ/∂{l} | {} |", code(d, id));
-        }
-        out.push('\n');
+}
+
+/// The table of ∂Ψ/∂Ik and ∂²Ψ/∂Ik∂Il (invariant path only).
+fn invariant_derivatives(out: &mut String, d: &DimIr) {
+    let Some(inv) = &d.d_inv else { return };
+    let _ = writeln!(out, "### Invariant derivatives\n");
+    let _ = writeln!(out, "| derivative | expression |\n|---|---|");
+    for (k, &id) in inv.d1.iter().enumerate() {
+        let _ = writeln!(out, "| ∂Ψ/∂I{} | {} |", k + 1, code(d, id));
     }
+    let labels = ["I1 I1", "I2 I2", "I3 I3", "I1 I2", "I1 I3", "I2 I3"];
+    for (l, &id) in labels.iter().zip(&inv.d2) {
+        let _ = writeln!(out, "| ∂²Ψ/∂{l} | {} |", code(d, id));
+    }
+    out.push('\n');
+}
+
+/// The list of ∂Ψ/∂σi.
+fn gradient_list(out: &mut String, d: &DimIr) {
     let _ = writeln!(out, "### Gradient\n");
     for (i, &g) in d.spectral.grad.iter().enumerate() {
         let _ = writeln!(out, "- ∂Ψ/∂s{} = {}", i + 1, code(d, g));
     }
     out.push('\n');
+}
+
+/// The scaling modes: closed-form diagonal eigenvalues when A = ∂²Ψ/∂σ² was
+/// proved diagonal, else the upper triangle of A the runtime eigensolves.
+fn scaling_modes(out: &mut String, d: &DimIr) {
+    let n = d.dim as usize;
     let _ = writeln!(out, "### Scaling modes\n");
     match &d.spectral.scale {
         ScaleIr::Diagonal(a) => {
@@ -137,6 +163,11 @@ fn dim_section(out: &mut String, d: &DimIr) {
         }
     }
     out.push('\n');
+}
+
+/// The twist and flip table: per pair, its closed form, or the guarded
+/// direct quotient and the limit used within τ of the singular set.
+fn pair_modes(out: &mut String, d: &DimIr) {
     let _ = writeln!(out, "### Twist and flip modes\n");
     let _ = writeln!(
         out,
@@ -171,7 +202,11 @@ fn dim_section(out: &mut String, d: &DimIr) {
         out,
         "τ = ecc_runtime::divided::LIMIT_TOL ≈ 6.1e-6 (ε^(1/3)): the same switch as the runtime.\n"
     );
-    divided_differences(out, d);
+}
+
+/// The denominators and logarithm arguments of the spectral expressions,
+/// each marked removable when a guarded divided difference covers it.
+fn singularities(out: &mut String, d: &DimIr) {
     let _ = writeln!(out, "### Singularities\n");
     if d.singularities.is_empty() {
         let _ = writeln!(
