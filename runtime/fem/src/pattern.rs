@@ -63,6 +63,45 @@ impl Pattern {
         &self.isolated
     }
 
+    /// A pattern from a saved upper-triangular CSC structure (for tools
+    /// that time a stored matrix, e.g. benches/cholmod): `col_ptr` of length
+    /// n + 1 from 0, rows strictly increasing in each column, all ≤ the
+    /// column, and the diagonal present (so last). Unknowns whose row and
+    /// column hold only the diagonal count as isolated (structurally: a built
+    /// pattern also calls isolated the coupled unknowns of an untouched vertex).
+    pub fn from_upper_csc(
+        n: usize,
+        col_ptr: Vec<usize>,
+        row_idx: Vec<usize>,
+    ) -> Result<Self, FemError> {
+        let bad = |m: String| Err(FemError::Symbolic(format!("bad upper CSC pattern: {m}")));
+        if col_ptr.len() != n + 1 || col_ptr[0] != 0 || col_ptr[n] != row_idx.len() {
+            return bad(format!("{} column pointers for n = {n}", col_ptr.len()));
+        }
+        let mut coupled = vec![false; n];
+        for j in 0..n {
+            let (lo, hi) = (col_ptr[j], col_ptr[j + 1]);
+            if lo >= hi || hi > row_idx.len() || row_idx[hi - 1] != j {
+                return bad(format!("column {j} has no diagonal last"));
+            }
+            let rows = &row_idx[lo..hi];
+            if rows.windows(2).any(|w| w[0] >= w[1]) {
+                return bad(format!("rows of column {j} not strictly increasing"));
+            }
+            for &i in &rows[..rows.len() - 1] {
+                coupled[i] = true;
+                coupled[j] = true;
+            }
+        }
+        let isolated = (0..n).filter(|&j| !coupled[j]).collect();
+        Ok(Pattern {
+            n,
+            col_ptr,
+            row_idx,
+            isolated,
+        })
+    }
+
     /// The slot of entry (i, j), i ≤ j, if it is in the pattern.
     pub fn slot(&self, i: usize, j: usize) -> Option<usize> {
         let (i, j) = if i <= j { (i, j) } else { (j, i) };
@@ -352,6 +391,24 @@ pub(crate) fn build(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn from_upper_csc_checks_the_structure() {
+        // [x x .]
+        // [  x .]   column 2 holds only its diagonal: isolated
+        // [    x]
+        let p = Pattern::from_upper_csc(3, vec![0, 1, 3, 4], vec![0, 0, 1, 2]).unwrap();
+        assert_eq!((p.n(), p.nnz()), (3, 4));
+        assert_eq!(p.isolated(), &[2]);
+        assert_eq!(p.slot(1, 0), Some(1));
+        let err = |c: Vec<usize>, r: Vec<usize>| {
+            format!("{}", Pattern::from_upper_csc(3, c, r).unwrap_err())
+        };
+        assert!(err(vec![0, 1, 3], vec![0, 0, 1]).contains("column pointers"));
+        assert!(err(vec![0, 1, 2, 3], vec![0, 0, 2]).contains("column 1 has no diagonal"));
+        assert!(err(vec![0, 1, 3, 4], vec![0, 0, 2, 2]).contains("column 1 has no diagonal"));
+        assert!(err(vec![0, 1, 4, 5], vec![0, 0, 0, 1, 2]).contains("not strictly increasing"));
+    }
 
     #[test]
     fn two_triangles_pattern() {
