@@ -79,119 +79,134 @@ impl Graph {
                 prec: Prec::Atom,
                 degree: 1,
             },
-            Node::Pow([b, e]) => {
-                let ne = self.as_num(*e).filter(|r| r.is_negative()).cloned();
-                match ne {
-                    Some(neg) => {
-                        let den = self.print_pow(&get(b), &(-neg), None);
-                        Printed {
-                            text: format!("1/{}", wrap(&den, Prec::Power)),
-                            prec: Prec::Product,
-                            degree: -den.degree,
-                        }
-                    }
-                    None => {
-                        let en = self.as_num(*e).cloned();
-                        self.print_pow(
-                            &get(b),
-                            en.as_ref().unwrap_or(&BigRational::one()),
-                            en.is_none().then(|| get(e)),
-                        )
-                    }
-                }
-            }
-            Node::Add(children) => {
-                let mut terms: Vec<SumTerm> = Vec::new();
-                let mut constant: Option<String> = None;
-                for c in children {
-                    if let Node::Num(r) = self.get(*c) {
-                        constant = Some(print_num(r).text);
-                        continue;
-                    }
-                    let p = get(c);
-                    let key = self.term_key(*c, memo);
-                    terms.push((-p.degree, key, p.text));
-                }
-                terms.sort_by(grlex);
-                let mut text = String::new();
-                let mut degree = 0;
-                let all = terms
-                    .into_iter()
-                    .map(|(d, _, t)| (d, t))
-                    .chain(constant.map(|t| (0, t)));
-                for (i, (d, t)) in all.enumerate() {
-                    degree = degree.max(-d);
-                    if i == 0 {
-                        text.push_str(&t);
-                    } else if let Some(rest) = t.strip_prefix('-') {
-                        text.push_str(" - ");
-                        text.push_str(rest);
-                    } else {
-                        text.push_str(" + ");
-                        text.push_str(&t);
-                    }
-                }
+            Node::Pow([b, e]) => self.print_pow_node(*b, *e, memo),
+            Node::Add(children) => self.print_sum(children, memo),
+            Node::Mul(children) => self.print_product(children, memo),
+        }
+    }
+
+    /// A power node: a negative numeric exponent prints as `1/base^|e|`
+    /// (a product-level fragment), anything else through `print_pow`.
+    fn print_pow_node(&self, b: Id, e: Id, memo: &HashMap<Id, Printed>) -> Printed {
+        let get = |c: &Id| memo[c].clone();
+        let ne = self.as_num(e).filter(|r| r.is_negative()).cloned();
+        match ne {
+            Some(neg) => {
+                let den = self.print_pow(&get(&b), &(-neg), None);
                 Printed {
-                    text,
-                    prec: Prec::Sum,
-                    degree,
+                    text: format!("1/{}", wrap(&den, Prec::Power)),
+                    prec: Prec::Product,
+                    degree: -den.degree,
                 }
             }
-            Node::Mul(children) => {
-                let mut coef = BigRational::one();
-                let mut num: Vec<(u8, String)> = Vec::new();
-                let mut den: Vec<(u8, String)> = Vec::new();
-                let mut degree = 0;
-                for c in children {
-                    match self.get(*c) {
-                        Node::Num(r) => coef = r.clone(),
-                        Node::Pow([b, e]) if self.as_num(*e).is_some_and(|r| r.is_negative()) => {
-                            let neg = -self.as_num(*e).cloned().unwrap_or_else(BigRational::one);
-                            let p = self.print_pow(&get(b), &neg, None);
-                            degree -= p.degree;
-                            den.push((self.rank(*b), wrap(&p, Prec::Power)));
-                        }
-                        _ => {
-                            let p = get(c);
-                            degree += p.degree;
-                            let base = match self.get(*c) {
-                                Node::Pow([b, _]) => *b,
-                                _ => *c,
-                            };
-                            num.push((self.rank(base), wrap(&p, Prec::Power)));
-                        }
-                    }
-                }
-                num.sort();
-                den.sort();
-                let mut num: Vec<String> = num.into_iter().map(|(_, t)| t).collect();
-                let mut den: Vec<String> = den.into_iter().map(|(_, t)| t).collect();
-                let sign = if coef.is_negative() { "-" } else { "" };
-                let (p, q) = (coef.numer().abs(), coef.denom().clone());
-                if !p.is_one() {
-                    num.insert(0, p.to_string());
-                }
-                if !q.is_one() {
-                    den.insert(0, q.to_string());
-                }
-                let num_text = if num.is_empty() {
-                    "1".to_string()
-                } else {
-                    num.join("*")
-                };
-                let text = match den.len() {
-                    0 => format!("{sign}{num_text}"),
-                    1 => format!("{sign}{num_text}/{}", den[0]),
-                    _ => format!("{sign}{num_text}/({})", den.join("*")),
-                };
-                let prec = if sign.is_empty() && den.is_empty() && num.len() == 1 {
-                    Prec::Power
-                } else {
-                    Prec::Product
-                };
-                Printed { text, prec, degree }
+            None => {
+                let en = self.as_num(e).cloned();
+                self.print_pow(
+                    &get(&b),
+                    en.as_ref().unwrap_or(&BigRational::one()),
+                    en.is_none().then(|| get(&e)),
+                )
             }
         }
+    }
+
+    /// A sum: terms in graded order (degree descending, then monomial key,
+    /// then text), the numeric constant last, `a - b` for negative terms.
+    fn print_sum(&self, children: &[Id], memo: &HashMap<Id, Printed>) -> Printed {
+        let get = |c: &Id| memo[c].clone();
+        let mut terms: Vec<SumTerm> = Vec::new();
+        let mut constant: Option<String> = None;
+        for c in children {
+            if let Node::Num(r) = self.get(*c) {
+                constant = Some(print_num(r).text);
+                continue;
+            }
+            let p = get(c);
+            let key = self.term_key(*c, memo);
+            terms.push((-p.degree, key, p.text));
+        }
+        terms.sort_by(grlex);
+        let mut text = String::new();
+        let mut degree = 0;
+        let all = terms
+            .into_iter()
+            .map(|(d, _, t)| (d, t))
+            .chain(constant.map(|t| (0, t)));
+        for (i, (d, t)) in all.enumerate() {
+            degree = degree.max(-d);
+            if i == 0 {
+                text.push_str(&t);
+            } else if let Some(rest) = t.strip_prefix('-') {
+                text.push_str(" - ");
+                text.push_str(rest);
+            } else {
+                text.push_str(" + ");
+                text.push_str(&t);
+            }
+        }
+        Printed {
+            text,
+            prec: Prec::Sum,
+            degree,
+        }
+    }
+
+    /// A product: the exact coefficient first, factors ordered by rank then
+    /// text, negative numeric powers gathered into one denominator.
+    fn print_product(&self, children: &[Id], memo: &HashMap<Id, Printed>) -> Printed {
+        let get = |c: &Id| memo[c].clone();
+        let mut coef = BigRational::one();
+        let mut num: Vec<(u8, String)> = Vec::new();
+        let mut den: Vec<(u8, String)> = Vec::new();
+        let mut degree = 0;
+        for c in children {
+            match self.get(*c) {
+                Node::Num(r) => coef = r.clone(),
+                Node::Pow([b, e]) if self.as_num(*e).is_some_and(|r| r.is_negative()) => {
+                    let neg = -self.as_num(*e).cloned().unwrap_or_else(BigRational::one);
+                    let p = self.print_pow(&get(b), &neg, None);
+                    degree -= p.degree;
+                    den.push((self.rank(*b), wrap(&p, Prec::Power)));
+                }
+                _ => {
+                    let p = get(c);
+                    degree += p.degree;
+                    let base = match self.get(*c) {
+                        Node::Pow([b, _]) => *b,
+                        _ => *c,
+                    };
+                    num.push((self.rank(base), wrap(&p, Prec::Power)));
+                }
+            }
+        }
+        num.sort();
+        den.sort();
+        let mut num: Vec<String> = num.into_iter().map(|(_, t)| t).collect();
+        let mut den: Vec<String> = den.into_iter().map(|(_, t)| t).collect();
+        let sign = if coef.is_negative() { "-" } else { "" };
+        let (p, q) = (coef.numer().abs(), coef.denom().clone());
+        if !p.is_one() {
+            num.insert(0, p.to_string());
+        }
+        if !q.is_one() {
+            den.insert(0, q.to_string());
+        }
+        let num_text = if num.is_empty() {
+            "1".to_string()
+        } else {
+            num.join("*")
+        };
+        let text = match den.len() {
+            0 => format!("{sign}{num_text}"),
+            1 => format!("{sign}{num_text}/{}", den[0]),
+            _ => format!("{sign}{num_text}/({})", den.join("*")),
+        };
+        let prec = if sign.is_empty() && den.is_empty() && num.len() == 1 {
+            Prec::Power
+        } else {
+            Prec::Product
+        };
+        Printed { text, prec, degree }
     }
 
     /// `base^e` for a non-negative exponent `e` (or the symbolic `sym_exp`).
