@@ -143,21 +143,7 @@ impl Graph {
         // Re-run when collecting powers produced new products or constants
         // (e.g. (x*y)^(1/2) * (x*y)^(3/2) = (x*y)^2 = x^2*y^2).
         for _round in 0..8 {
-            let mut coef = BigRational::one();
-            let mut bases: BTreeMap<Id, Vec<Id>> = BTreeMap::new();
-            let mut stack: Vec<Id> = pending.iter().rev().copied().collect();
-            while let Some(f) = stack.pop() {
-                super::graph::count_work(1);
-                match self.get(f).clone() {
-                    Node::Num(c) => coef = rat::mul(&coef, &c),
-                    Node::Mul(children) => stack.extend(children.iter().rev()),
-                    Node::Pow([b, e]) => bases.entry(b).or_default().push(e),
-                    _ => {
-                        let one = self.one();
-                        bases.entry(f).or_default().push(one)
-                    }
-                }
-            }
+            let (mut coef, bases) = self.gather_factors(&pending);
             if coef.is_zero() {
                 return self.zero();
             }
@@ -188,58 +174,89 @@ impl Graph {
                 pending = out;
                 continue;
             }
-            // Pull the rational content out of sums that are multiplied by
-            // something else or raised to an integer power:
-            // kappa*(2*I1 - 4) = 2*kappa*(I1 - 2), (2*x + 2)^-1 = (x + 1)^-1/2.
-            let several = out.len() >= 2;
-            for f in out.iter_mut() {
-                let (base, n) = match self.get(*f).clone() {
-                    Node::Add(_) if several => (*f, 1),
-                    Node::Pow([b, e]) if matches!(self.get(b), Node::Add(_)) => {
-                        match self.as_num(e).and_then(rat::as_i64) {
-                            Some(n) => (b, n),
-                            None => continue,
-                        }
-                    }
-                    _ => continue,
-                };
-                if let Some((g, prim)) = self.add_content(base) {
-                    match rat::pow_int(&g, n) {
-                        Some(gn) => {
-                            coef = rat::mul(&coef, &gn);
-                            *f = self.powi(prim, n);
-                        }
-                        None => continue,
-                    }
-                }
-            }
-            out.sort();
-            // A rational coefficient times a single sum distributes:
-            // 2*(x + y) = 2*x + 2*y (keeps sums canonical, like SymPy).
-            if out.len() == 1
-                && !coef.is_one()
-                && let Node::Add(terms) = self.get(out[0]).clone()
-            {
-                let c = self.num(coef);
-                let scaled: Vec<Id> = terms.iter().map(|&t| self.product(&[c, t])).collect();
-                return self.sum(&scaled);
-            }
-            return match (out.len(), coef.is_one()) {
-                (0, _) => self.num(coef),
-                (1, true) => out[0],
-                _ => {
-                    if !coef.is_one() {
-                        out.insert(0, self.num(coef));
-                    }
-                    self.add(Node::Mul(out))
-                }
-            };
+            self.pull_sum_content(&mut out, &mut coef);
+            return self.assemble_product(out, coef);
         }
         // Unreachable in practice (each round strictly removes products of
         // products); keep an exact, merely less canonical, result.
         pending.sort();
         pending.dedup();
         self.add(Node::Mul(pending))
+    }
+
+    /// Flattens nested products of `factors` into the rational coefficient
+    /// and, per base, the list of its exponents (a bare factor has exponent 1).
+    fn gather_factors(&mut self, factors: &[Id]) -> (BigRational, BTreeMap<Id, Vec<Id>>) {
+        let mut coef = BigRational::one();
+        let mut bases: BTreeMap<Id, Vec<Id>> = BTreeMap::new();
+        let mut stack: Vec<Id> = factors.iter().rev().copied().collect();
+        while let Some(f) = stack.pop() {
+            super::graph::count_work(1);
+            match self.get(f).clone() {
+                Node::Num(c) => coef = rat::mul(&coef, &c),
+                Node::Mul(children) => stack.extend(children.iter().rev()),
+                Node::Pow([b, e]) => bases.entry(b).or_default().push(e),
+                _ => {
+                    let one = self.one();
+                    bases.entry(f).or_default().push(one)
+                }
+            }
+        }
+        (coef, bases)
+    }
+
+    /// Pulls the rational content out of sums that are multiplied by
+    /// something else or raised to an integer power, into `coef`:
+    /// kappa*(2*I1 - 4) = 2*kappa*(I1 - 2), (2*x + 2)^-1 = (x + 1)^-1/2.
+    fn pull_sum_content(&mut self, out: &mut [Id], coef: &mut BigRational) {
+        let several = out.len() >= 2;
+        for f in out.iter_mut() {
+            let (base, n) = match self.get(*f).clone() {
+                Node::Add(_) if several => (*f, 1),
+                Node::Pow([b, e]) if matches!(self.get(b), Node::Add(_)) => {
+                    match self.as_num(e).and_then(rat::as_i64) {
+                        Some(n) => (b, n),
+                        None => continue,
+                    }
+                }
+                _ => continue,
+            };
+            if let Some((g, prim)) = self.add_content(base) {
+                match rat::pow_int(&g, n) {
+                    Some(gn) => {
+                        *coef = rat::mul(coef, &gn);
+                        *f = self.powi(prim, n);
+                    }
+                    None => continue,
+                }
+            }
+        }
+    }
+
+    /// The canonical product node of the collected factors `out` (sorted
+    /// here) and the rational coefficient `coef`.
+    fn assemble_product(&mut self, mut out: Vec<Id>, coef: BigRational) -> Id {
+        out.sort();
+        // A rational coefficient times a single sum distributes:
+        // 2*(x + y) = 2*x + 2*y (keeps sums canonical, like SymPy).
+        if out.len() == 1
+            && !coef.is_one()
+            && let Node::Add(terms) = self.get(out[0]).clone()
+        {
+            let c = self.num(coef);
+            let scaled: Vec<Id> = terms.iter().map(|&t| self.product(&[c, t])).collect();
+            return self.sum(&scaled);
+        }
+        match (out.len(), coef.is_one()) {
+            (0, _) => self.num(coef),
+            (1, true) => out[0],
+            _ => {
+                if !coef.is_one() {
+                    out.insert(0, self.num(coef));
+                }
+                self.add(Node::Mul(out))
+            }
+        }
     }
 
     /// The canonical `base ^ exp`.
