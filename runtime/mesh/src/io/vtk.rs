@@ -127,8 +127,9 @@ fn skip_field(t: &mut Tokens<'_>) -> Result<(), ParseError> {
     Ok(())
 }
 
-/// Parse legacy VTK ASCII text (see the module docs).
-pub fn parse_vtk(text: &str) -> Result<AnyMesh, ParseError> {
+/// Check the three header lines (`# vtk DataFile Version x.y`, a title,
+/// `ASCII`) and return the byte offset where the body starts.
+fn read_header(text: &str) -> Result<usize, ParseError> {
     let mut header = text.split_inclusive('\n');
     let l1 = header.next().unwrap_or("");
     if l1.trim().is_empty() {
@@ -164,8 +165,11 @@ pub fn parse_vtk(text: &str) -> Result<AnyMesh, ParseError> {
             ));
         }
     }
-    let start = l1.len() + l2.len() + l3.len();
-    let mut t = Tokens::starting_at(text, start, 4, None);
+    Ok(l1.len() + l2.len() + l3.len())
+}
+
+/// `DATASET UNSTRUCTURED_GRID` (the only dataset type read).
+fn read_dataset(t: &mut Tokens<'_>) -> Result<(), ParseError> {
     t.keyword("DATASET")?;
     let (kind, kline) = t.expect("the dataset type")?;
     if !kind.eq_ignore_ascii_case("UNSTRUCTURED_GRID") {
@@ -177,42 +181,65 @@ pub fn parse_vtk(text: &str) -> Result<AnyMesh, ParseError> {
             ),
         ));
     }
-    let mut points: Option<Vec<[f64; 3]>> = None;
-    let mut cells: Option<Cells> = None;
-    let mut types: Option<(Vec<usize>, usize)> = None;
+    Ok(())
+}
+
+/// `POINTS n type` after its keyword: 3n coordinates.
+fn read_points(t: &mut Tokens<'_>) -> Result<Vec<[f64; 3]>, ParseError> {
+    let (n, _) = t.usize("the number of points")?;
+    t.expect("the POINTS data type")?;
+    let mut p = Vec::with_capacity(capacity_hint(n, t.text_len()));
+    for i in 0..n {
+        let what = format!("coordinate of point {i} (of {n})");
+        p.push([t.f64(&what)?, t.f64(&what)?, t.f64(&what)?]);
+    }
+    Ok(p)
+}
+
+/// `CELLS a b` after its keyword, in the classic or the 5.x layout (the
+/// latter is recognised by the `OFFSETS` keyword that follows).
+fn read_cells(t: &mut Tokens<'_>) -> Result<Cells, ParseError> {
+    let (a, _) = t.usize("the number of cells")?;
+    let (b, _) = t.usize("the CELLS size")?;
+    let is_v5 = t
+        .peek()
+        .is_some_and(|(k, _)| k.eq_ignore_ascii_case("OFFSETS"));
+    if is_v5 {
+        read_cells_v5(t, a, b)
+    } else {
+        read_cells_classic(t, a, b)
+    }
+}
+
+/// `CELL_TYPES n` after its keyword: n type codes.
+fn read_cell_types(t: &mut Tokens<'_>) -> Result<Vec<usize>, ParseError> {
+    let (n, _) = t.usize("the number of cell types")?;
+    let mut ty = Vec::with_capacity(capacity_hint(n, t.text_len()));
+    for i in 0..n {
+        ty.push(t.usize(&format!("the type of cell {i} (of {n})"))?.0);
+    }
+    Ok(ty)
+}
+
+/// The three mesh sections of the body; each is `None` until read.
+#[derive(Default)]
+struct Sections {
+    points: Option<Vec<[f64; 3]>>,
+    cells: Option<Cells>,
+    /// The cell types and the line of their `CELL_TYPES` keyword.
+    types: Option<(Vec<usize>, usize)>,
+}
+
+/// Read the body's sections, one keyword at a time, up to `POINT_DATA` /
+/// `CELL_DATA` or the end of the file.
+fn read_sections(t: &mut Tokens<'_>) -> Result<Sections, ParseError> {
+    let mut s = Sections::default();
     while let Some((kw, line)) = t.next_token() {
         match kw.to_ascii_uppercase().as_str() {
-            "POINTS" => {
-                let (n, _) = t.usize("the number of points")?;
-                t.expect("the POINTS data type")?;
-                let mut p = Vec::with_capacity(capacity_hint(n, t.text_len()));
-                for i in 0..n {
-                    let what = format!("coordinate of point {i} (of {n})");
-                    p.push([t.f64(&what)?, t.f64(&what)?, t.f64(&what)?]);
-                }
-                points = Some(p);
-            }
-            "CELLS" => {
-                let (a, _) = t.usize("the number of cells")?;
-                let (b, _) = t.usize("the CELLS size")?;
-                let is_v5 = t
-                    .peek()
-                    .is_some_and(|(k, _)| k.eq_ignore_ascii_case("OFFSETS"));
-                cells = Some(if is_v5 {
-                    read_cells_v5(&mut t, a, b)?
-                } else {
-                    read_cells_classic(&mut t, a, b)?
-                });
-            }
-            "CELL_TYPES" => {
-                let (n, _) = t.usize("the number of cell types")?;
-                let mut ty = Vec::with_capacity(capacity_hint(n, t.text_len()));
-                for i in 0..n {
-                    ty.push(t.usize(&format!("the type of cell {i} (of {n})"))?.0);
-                }
-                types = Some((ty, line));
-            }
-            "FIELD" => skip_field(&mut t)?,
+            "POINTS" => s.points = Some(read_points(t)?),
+            "CELLS" => s.cells = Some(read_cells(t)?),
+            "CELL_TYPES" => s.types = Some((read_cell_types(t)?, line)),
+            "FIELD" => skip_field(t)?,
             "METADATA" => t.skip_past_blank_line(),
             "POINT_DATA" | "CELL_DATA" => break,
             _ => {
@@ -223,9 +250,24 @@ pub fn parse_vtk(text: &str) -> Result<AnyMesh, ParseError> {
             }
         }
     }
-    let points = points.ok_or_else(|| ParseError::format("no POINTS section"))?;
-    let cells = cells.ok_or_else(|| ParseError::format("no CELLS section"))?;
-    let (types, tline) = types.ok_or_else(|| ParseError::format("no CELL_TYPES section"))?;
+    Ok(s)
+}
+
+/// Parse legacy VTK ASCII text (see the module docs).
+pub fn parse_vtk(text: &str) -> Result<AnyMesh, ParseError> {
+    let start = read_header(text)?;
+    let mut t = Tokens::starting_at(text, start, 4, None);
+    read_dataset(&mut t)?;
+    let s = read_sections(&mut t)?;
+    let points = s
+        .points
+        .ok_or_else(|| ParseError::format("no POINTS section"))?;
+    let cells = s
+        .cells
+        .ok_or_else(|| ParseError::format("no CELLS section"))?;
+    let (types, tline) = s
+        .types
+        .ok_or_else(|| ParseError::format("no CELL_TYPES section"))?;
     let ncells = cells.lines.len();
     if types.len() != ncells {
         return Err(ParseError::line(
@@ -233,6 +275,17 @@ pub fn parse_vtk(text: &str) -> Result<AnyMesh, ParseError> {
             format!("CELL_TYPES has {} entries for {ncells} cells", types.len()),
         ));
     }
+    build_mesh(points, &cells, &types, tline)
+}
+
+/// Keep the triangles (type 5) and tetrahedra (type 10), checking their
+/// point counts and indices; tets win when both are present.
+fn build_mesh(
+    points: Vec<[f64; 3]>,
+    cells: &Cells,
+    types: &[usize],
+    tline: usize,
+) -> Result<AnyMesh, ParseError> {
     let mut tris = Vec::new();
     let mut tets = Vec::new();
     for (i, &ty) in types.iter().enumerate() {
