@@ -106,6 +106,155 @@ fn check_range<const K: usize>(els: &Elements<K>, name: &str, nv: usize) -> Resu
     Ok(())
 }
 
+/// What has been read so far; each section fills its slot once.
+#[derive(Default)]
+struct Medit {
+    saw_version: bool,
+    dim: Option<usize>,
+    positions: Option<Vec<[f64; 3]>>,
+    tris: Option<Elements<3>>,
+    tets: Option<Elements<4>>,
+}
+
+/// `MeshVersionFormatted v` after its keyword (v in 1..=4).
+fn read_version(t: &mut Tokens<'_>) -> Result<(), ParseError> {
+    let (v, vline) = t.usize("the mesh version")?;
+    if !(1..=4).contains(&v) {
+        return Err(ParseError::line(
+            vline,
+            format!("unknown MEDIT version {v}"),
+        ));
+    }
+    Ok(())
+}
+
+/// `Dimension d` after its keyword (d = 2 or 3).
+fn read_dimension(t: &mut Tokens<'_>) -> Result<usize, ParseError> {
+    let (d, dline) = t.usize("the dimension")?;
+    if d != 2 && d != 3 {
+        return Err(ParseError::line(
+            dline,
+            format!("dimension must be 2 or 3, found {d}"),
+        ));
+    }
+    Ok(d)
+}
+
+/// The `n` records of `Vertices`: `d` coordinates (z = 0 when d = 2) and a
+/// reference each.
+fn read_vertices(t: &mut Tokens<'_>, n: usize, d: usize) -> Result<Vec<[f64; 3]>, ParseError> {
+    let mut pos = Vec::with_capacity(capacity_hint(n, t.text_len()));
+    for i in 0..n {
+        let what = format!("coordinate of vertex {} (of {n})", i + 1);
+        let mut p = [0.0; 3];
+        for c in p.iter_mut().take(d) {
+            *c = t.f64(&what)?;
+        }
+        t.i64(&format!("reference of vertex {}", i + 1))?;
+        pos.push(p);
+    }
+    Ok(pos)
+}
+
+/// A section we do not keep: an empty unsupported element section or a
+/// skipped one (its records are consumed); anything else is an error.
+fn skip_section(
+    t: &mut Tokens<'_>,
+    kw: &str,
+    line: usize,
+    n: usize,
+    d: usize,
+) -> Result<(), ParseError> {
+    if unsupported_elements(kw) {
+        if n > 0 {
+            return Err(ParseError::line(
+                line,
+                format!(
+                    "unsupported element section `{kw}` with {n} elements: only triangles and tetrahedra are supported"
+                ),
+            ));
+        }
+    } else if let Some(len) = skipped_record_len(kw, d) {
+        for _ in 0..n.saturating_mul(len) {
+            t.expect(&format!("a record of `{kw}`"))?;
+        }
+    } else {
+        return Err(ParseError::line(
+            line,
+            format!("unknown MEDIT keyword `{}`", shorten(kw)),
+        ));
+    }
+    Ok(())
+}
+
+impl Medit {
+    /// A counted section `kw n` (after the version and the dimension).
+    fn read_section(
+        &mut self,
+        t: &mut Tokens<'_>,
+        kw: &str,
+        line: usize,
+    ) -> Result<(), ParseError> {
+        if !self.saw_version {
+            return Err(ParseError::line(
+                line,
+                format!(
+                    "expected `MeshVersionFormatted`, found `{}` (binary .meshb is not supported)",
+                    shorten(kw)
+                ),
+            ));
+        }
+        let d = self
+            .dim
+            .ok_or_else(|| ParseError::line(line, format!("section `{kw}` before `Dimension`")))?;
+        let (n, _) = t.usize(&format!("the number of {kw}"))?;
+        match kw.to_ascii_lowercase().as_str() {
+            "vertices" => {
+                if self.positions.is_some() {
+                    return Err(ParseError::line(line, "a second `Vertices` section"));
+                }
+                self.positions = Some(read_vertices(t, n, d)?);
+            }
+            "triangles" => {
+                if self.tris.is_some() {
+                    return Err(ParseError::line(line, "a second `Triangles` section"));
+                }
+                self.tris = Some(read_elements(t, "triangle", n)?);
+            }
+            "tetrahedra" => {
+                if self.tets.is_some() {
+                    return Err(ParseError::line(line, "a second `Tetrahedra` section"));
+                }
+                self.tets = Some(read_elements(t, "tetrahedron", n)?);
+            }
+            _ => skip_section(t, kw, line, n, d)?,
+        }
+        Ok(())
+    }
+
+    /// The mesh: tetrahedra when there are any, else triangles, with every
+    /// index checked against the vertex count.
+    fn into_mesh(self) -> Result<AnyMesh, ParseError> {
+        let positions = self
+            .positions
+            .ok_or_else(|| ParseError::format("no `Vertices` section in the MEDIT file"))?;
+        let nv = positions.len();
+        match (self.tets, self.tris) {
+            (Some(tets), _) if !tets.items.is_empty() => {
+                check_range(&tets, "tetrahedron", nv)?;
+                Ok(AnyMesh::Tet(TetMesh::new(positions, tets.items)))
+            }
+            (_, Some(tris)) if !tris.items.is_empty() => {
+                check_range(&tris, "triangle", nv)?;
+                Ok(AnyMesh::Tri(TriMesh::new(positions, tris.items)))
+            }
+            _ => Err(ParseError::format(
+                "the MEDIT file has no triangles and no tetrahedra",
+            )),
+        }
+    }
+}
+
 /// Parse MEDIT `.mesh` text (see the module docs).
 pub fn parse_medit(text: &str) -> Result<AnyMesh, ParseError> {
     let mut t = Tokens::new(text, Some(b'#'));
@@ -114,119 +263,19 @@ pub fn parse_medit(text: &str) -> Result<AnyMesh, ParseError> {
             "empty file: expected `MeshVersionFormatted`",
         ));
     }
-    let mut dim: Option<usize> = None;
-    let mut positions: Option<Vec<[f64; 3]>> = None;
-    let mut tris: Option<Elements<3>> = None;
-    let mut tets: Option<Elements<4>> = None;
-    let mut saw_version = false;
+    let mut m = Medit::default();
     while let Some((kw, line)) = t.next_token() {
-        let lower = kw.to_ascii_lowercase();
-        match lower.as_str() {
+        match kw.to_ascii_lowercase().as_str() {
             "meshversionformatted" => {
-                let (v, vline) = t.usize("the mesh version")?;
-                if !(1..=4).contains(&v) {
-                    return Err(ParseError::line(
-                        vline,
-                        format!("unknown MEDIT version {v}"),
-                    ));
-                }
-                saw_version = true;
+                read_version(&mut t)?;
+                m.saw_version = true;
             }
-            "dimension" => {
-                let (d, dline) = t.usize("the dimension")?;
-                if d != 2 && d != 3 {
-                    return Err(ParseError::line(
-                        dline,
-                        format!("dimension must be 2 or 3, found {d}"),
-                    ));
-                }
-                dim = Some(d);
-            }
+            "dimension" => m.dim = Some(read_dimension(&mut t)?),
             "end" => break,
-            _ => {
-                if !saw_version {
-                    return Err(ParseError::line(
-                        line,
-                        format!(
-                            "expected `MeshVersionFormatted`, found `{}` (binary .meshb is not supported)",
-                            shorten(kw)
-                        ),
-                    ));
-                }
-                let d = dim.ok_or_else(|| {
-                    ParseError::line(line, format!("section `{kw}` before `Dimension`"))
-                })?;
-                let (n, _) = t.usize(&format!("the number of {kw}"))?;
-                match lower.as_str() {
-                    "vertices" => {
-                        if positions.is_some() {
-                            return Err(ParseError::line(line, "a second `Vertices` section"));
-                        }
-                        let mut pos = Vec::with_capacity(capacity_hint(n, t.text_len()));
-                        for i in 0..n {
-                            let what = format!("coordinate of vertex {} (of {n})", i + 1);
-                            let mut p = [0.0; 3];
-                            for c in p.iter_mut().take(d) {
-                                *c = t.f64(&what)?;
-                            }
-                            t.i64(&format!("reference of vertex {}", i + 1))?;
-                            pos.push(p);
-                        }
-                        positions = Some(pos);
-                    }
-                    "triangles" => {
-                        if tris.is_some() {
-                            return Err(ParseError::line(line, "a second `Triangles` section"));
-                        }
-                        tris = Some(read_elements(&mut t, "triangle", n)?);
-                    }
-                    "tetrahedra" => {
-                        if tets.is_some() {
-                            return Err(ParseError::line(line, "a second `Tetrahedra` section"));
-                        }
-                        tets = Some(read_elements(&mut t, "tetrahedron", n)?);
-                    }
-                    _ => {
-                        if unsupported_elements(kw) {
-                            if n > 0 {
-                                return Err(ParseError::line(
-                                    line,
-                                    format!(
-                                        "unsupported element section `{kw}` with {n} elements: only triangles and tetrahedra are supported"
-                                    ),
-                                ));
-                            }
-                        } else if let Some(len) = skipped_record_len(kw, d) {
-                            for _ in 0..n.saturating_mul(len) {
-                                t.expect(&format!("a record of `{kw}`"))?;
-                            }
-                        } else {
-                            return Err(ParseError::line(
-                                line,
-                                format!("unknown MEDIT keyword `{}`", shorten(kw)),
-                            ));
-                        }
-                    }
-                }
-            }
+            _ => m.read_section(&mut t, kw, line)?,
         }
     }
-    let positions =
-        positions.ok_or_else(|| ParseError::format("no `Vertices` section in the MEDIT file"))?;
-    let nv = positions.len();
-    match (tets, tris) {
-        (Some(tets), _) if !tets.items.is_empty() => {
-            check_range(&tets, "tetrahedron", nv)?;
-            Ok(AnyMesh::Tet(TetMesh::new(positions, tets.items)))
-        }
-        (_, Some(tris)) if !tris.items.is_empty() => {
-            check_range(&tris, "triangle", nv)?;
-            Ok(AnyMesh::Tri(TriMesh::new(positions, tris.items)))
-        }
-        _ => Err(ParseError::format(
-            "the MEDIT file has no triangles and no tetrahedra",
-        )),
-    }
+    m.into_mesh()
 }
 
 #[cfg(test)]
