@@ -41,126 +41,166 @@ fn resolve(tok: &str, count: usize, line: usize, what: &str) -> Result<usize, Pa
     }
 }
 
+/// The statements read so far, in file order.
+#[derive(Default)]
+struct Obj {
+    positions: Vec<[f64; 3]>,
+    tex: Vec<[f64; 2]>,
+    triangles: Vec<[usize; 3]>,
+    /// The `vt` index of each face corner, when given.
+    corner_vt: Vec<[Option<usize>; 3]>,
+    face_lines: Vec<usize>,
+}
+
+/// `v x y [z …]` after its keyword: a missing z is 0, extra values ignored.
+fn read_vertex<'a>(
+    toks: &mut impl Iterator<Item = &'a str>,
+    content: &str,
+    line: usize,
+) -> Result<[f64; 3], ParseError> {
+    // no per-line allocation: read at most x, y, z
+    let (Some(tx), Some(ty)) = (toks.next(), toks.next()) else {
+        let found = content.split_whitespace().count() - 1;
+        return Err(ParseError::line(
+            line,
+            format!("vertex needs at least x and y, found {found} values"),
+        ));
+    };
+    let x = parse_f64(tx, line, "vertex x")?;
+    let y = parse_f64(ty, line, "vertex y")?;
+    let z = match toks.next() {
+        Some(t) => parse_f64(t, line, "vertex z")?,
+        None => 0.0,
+    };
+    Ok([x, y, z])
+}
+
+/// `vt u [v …]` after its keyword: a missing v is 0.
+fn read_texture<'a>(
+    toks: impl Iterator<Item = &'a str>,
+    line: usize,
+) -> Result<[f64; 2], ParseError> {
+    let vals: Vec<&str> = toks.collect();
+    if vals.is_empty() {
+        return Err(ParseError::line(
+            line,
+            "texture coordinate needs at least u",
+        ));
+    }
+    let u = parse_f64(vals[0], line, "texture u")?;
+    let v = match vals.get(1) {
+        Some(t) => parse_f64(t, line, "texture v")?,
+        None => 0.0,
+    };
+    Ok([u, v])
+}
+
+impl Obj {
+    /// `f a b c` after its keyword: exactly three corners `v`, `v/vt`,
+    /// `v//vn` or `v/vt/vn`, indices resolved against what is defined so far.
+    fn read_face<'a>(
+        &mut self,
+        toks: &mut impl Iterator<Item = &'a str>,
+        content: &str,
+        line: usize,
+    ) -> Result<(), ParseError> {
+        let (Some(c0), Some(c1), Some(c2), None) =
+            (toks.next(), toks.next(), toks.next(), toks.next())
+        else {
+            let found = content.split_whitespace().count() - 1;
+            return Err(ParseError::line(
+                line,
+                format!(
+                    "face has {found} corners: only triangles are supported (triangulate the mesh first)"
+                ),
+            ));
+        };
+        let corners = [c0, c1, c2];
+        let mut tri = [0usize; 3];
+        let mut vts = [None; 3];
+        for (k, c) in corners.iter().enumerate() {
+            let mut parts = c.split('/');
+            let vtok = parts.next().unwrap_or("");
+            tri[k] = resolve(vtok, self.positions.len(), line, "vertex index")?;
+            if let Some(t) = parts.next().filter(|t| !t.is_empty()) {
+                vts[k] = Some(resolve(t, self.tex.len(), line, "texture index")?);
+            }
+            if let Some(n) = parts.next().filter(|t| !t.is_empty()) {
+                parse_i64(n, line, "normal index")?;
+            }
+            if parts.next().is_some() {
+                return Err(ParseError::line(
+                    line,
+                    format!("malformed face corner `{}`", shorten(c)),
+                ));
+            }
+        }
+        self.triangles.push(tri);
+        self.corner_vt.push(vts);
+        self.face_lines.push(line);
+        Ok(())
+    }
+
+    /// Every face's vertex and texture indices are within what the whole
+    /// file defines (positive indices may point forward).
+    fn check_ranges(&self) -> Result<(), ParseError> {
+        let (positions, tex) = (&self.positions, &self.tex);
+        for (f, tri) in self.triangles.iter().enumerate() {
+            for &v in tri {
+                if v >= positions.len() {
+                    return Err(ParseError::line(
+                        self.face_lines[f],
+                        format!(
+                            "face refers to vertex {} but the file defines only {} vertices",
+                            v + 1,
+                            positions.len()
+                        ),
+                    ));
+                }
+            }
+            for t in self.corner_vt[f].iter().flatten() {
+                if *t >= tex.len() {
+                    return Err(ParseError::line(
+                        self.face_lines[f],
+                        format!(
+                            "face refers to texture coordinate {} but the file defines only {}",
+                            t + 1,
+                            tex.len()
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Parse OBJ text into a triangle mesh (see the module docs).
 pub fn parse_obj(text: &str) -> Result<TriMesh, ParseError> {
-    let mut positions: Vec<[f64; 3]> = Vec::new();
-    let mut tex: Vec<[f64; 2]> = Vec::new();
-    let mut triangles: Vec<[usize; 3]> = Vec::new();
-    let mut corner_vt: Vec<[Option<usize>; 3]> = Vec::new();
-    let mut face_lines: Vec<usize> = Vec::new();
+    let mut o = Obj::default();
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
         let content = raw.split('#').next().unwrap_or("");
         let mut toks = content.split_whitespace();
         let Some(key) = toks.next() else { continue };
         match key {
-            "v" => {
-                // no per-line allocation: read at most x, y, z
-                let (Some(tx), Some(ty)) = (toks.next(), toks.next()) else {
-                    let found = content.split_whitespace().count() - 1;
-                    return Err(ParseError::line(
-                        line,
-                        format!("vertex needs at least x and y, found {found} values"),
-                    ));
-                };
-                let x = parse_f64(tx, line, "vertex x")?;
-                let y = parse_f64(ty, line, "vertex y")?;
-                let z = match toks.next() {
-                    Some(t) => parse_f64(t, line, "vertex z")?,
-                    None => 0.0,
-                };
-                positions.push([x, y, z]);
-            }
-            "vt" => {
-                let vals: Vec<&str> = toks.collect();
-                if vals.is_empty() {
-                    return Err(ParseError::line(
-                        line,
-                        "texture coordinate needs at least u",
-                    ));
-                }
-                let u = parse_f64(vals[0], line, "texture u")?;
-                let v = match vals.get(1) {
-                    Some(t) => parse_f64(t, line, "texture v")?,
-                    None => 0.0,
-                };
-                tex.push([u, v]);
-            }
-            "f" => {
-                let (Some(c0), Some(c1), Some(c2), None) =
-                    (toks.next(), toks.next(), toks.next(), toks.next())
-                else {
-                    let found = content.split_whitespace().count() - 1;
-                    return Err(ParseError::line(
-                        line,
-                        format!(
-                            "face has {found} corners: only triangles are supported (triangulate the mesh first)"
-                        ),
-                    ));
-                };
-                let corners = [c0, c1, c2];
-                let mut tri = [0usize; 3];
-                let mut vts = [None; 3];
-                for (k, c) in corners.iter().enumerate() {
-                    let mut parts = c.split('/');
-                    let vtok = parts.next().unwrap_or("");
-                    tri[k] = resolve(vtok, positions.len(), line, "vertex index")?;
-                    if let Some(t) = parts.next().filter(|t| !t.is_empty()) {
-                        vts[k] = Some(resolve(t, tex.len(), line, "texture index")?);
-                    }
-                    if let Some(n) = parts.next().filter(|t| !t.is_empty()) {
-                        parse_i64(n, line, "normal index")?;
-                    }
-                    if parts.next().is_some() {
-                        return Err(ParseError::line(
-                            line,
-                            format!("malformed face corner `{}`", shorten(c)),
-                        ));
-                    }
-                }
-                triangles.push(tri);
-                corner_vt.push(vts);
-                face_lines.push(line);
-            }
+            "v" => o.positions.push(read_vertex(&mut toks, content, line)?),
+            "vt" => o.tex.push(read_texture(toks, line)?),
+            "f" => o.read_face(&mut toks, content, line)?,
             _ => {}
         }
     }
-    if positions.is_empty() && triangles.is_empty() {
+    if o.positions.is_empty() && o.triangles.is_empty() {
         return Err(ParseError::format("no vertices or faces: empty OBJ file"));
     }
-    if triangles.is_empty() {
+    if o.triangles.is_empty() {
         return Err(ParseError::format("the OBJ file has vertices but no faces"));
     }
-    for (f, tri) in triangles.iter().enumerate() {
-        for &v in tri {
-            if v >= positions.len() {
-                return Err(ParseError::line(
-                    face_lines[f],
-                    format!(
-                        "face refers to vertex {} but the file defines only {} vertices",
-                        v + 1,
-                        positions.len()
-                    ),
-                ));
-            }
-        }
-        for t in corner_vt[f].iter().flatten() {
-            if *t >= tex.len() {
-                return Err(ParseError::line(
-                    face_lines[f],
-                    format!(
-                        "face refers to texture coordinate {} but the file defines only {}",
-                        t + 1,
-                        tex.len()
-                    ),
-                ));
-            }
-        }
-    }
-    let uvs = per_vertex_uvs(positions.len(), &triangles, &corner_vt, &tex);
+    o.check_ranges()?;
+    let uvs = per_vertex_uvs(o.positions.len(), &o.triangles, &o.corner_vt, &o.tex);
     Ok(TriMesh {
-        positions,
-        triangles,
+        positions: o.positions,
+        triangles: o.triangles,
         uvs,
     })
 }
