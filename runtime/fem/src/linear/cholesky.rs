@@ -25,13 +25,22 @@ use faer::{Conj, MatMut, Par, Side};
 
 use serde::{Deserialize, Serialize};
 
+mod separator;
+mod split;
 mod threads;
 
 pub use threads::{REPROBE_EVERY, ThreadPolicy};
 
+/// [`ThreadPolicy::Split`] splits a factorisation whose estimated flops
+/// ([`CholeskyFactor::factor_flops`] of the plain analysis) reach this; below,
+/// the two-thread overhead (the separator's dense block, joins) does not pay
+/// (docs/benchmarks/ordering.md, "Tree-level parallel factorisation").
+pub const SPLIT_MIN_FLOPS: f64 = 5e7;
+
 use super::ordering::{FillOrdering, permutation};
 use crate::error::FemError;
 use crate::pattern::Pattern;
+use split::SplitFactor;
 use threads::ThreadChooser;
 
 /// How [`CholeskyFactor`] orders and threads its factorisation.
@@ -70,6 +79,9 @@ pub struct CholeskyFactor {
     threads: ThreadChooser,
     /// The parallelism of the last numeric factorisation (used by the solves).
     par: Par,
+    /// The two-way split factor ([`ThreadPolicy::Split`]); when present,
+    /// `l_values` is empty and every factorisation and solve goes through it.
+    split: Option<SplitFactor>,
     params: CholeskyParams,
     factored: bool,
     symbolic_analyses: usize,
@@ -82,6 +94,25 @@ struct Analysis {
     l_values: Vec<f64>,
     mem: MemBuffer,
     threads: ThreadChooser,
+    split: Option<SplitFactor>,
+}
+
+/// The split factor when `params` asks for it, the pool has two threads and
+/// the plain factorisation (`symbolic`) is supernodal and large enough.
+fn split_for(
+    pattern: &Pattern,
+    params: CholeskyParams,
+    symbolic: &SymbolicCholesky<usize>,
+) -> Result<Option<SplitFactor>, FemError> {
+    let wanted = params.threads == ThreadPolicy::Split
+        && rayon::current_num_threads() >= 2
+        && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+        && flops(symbolic) >= SPLIT_MIN_FLOPS;
+    if wanted {
+        SplitFactor::analyse(pattern)
+    } else {
+        Ok(None)
+    }
 }
 
 /// Symbolic analysis of the upper-triangular `pattern` with the ordering of
@@ -110,6 +141,16 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
         params.threads,
         matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
     );
+    let split = split_for(pattern, params, &symbolic)?;
+    if split.is_some() {
+        return Ok(Analysis {
+            symbolic,
+            l_values: Vec::new(),
+            mem: MemBuffer::new(StackReq::EMPTY),
+            threads,
+            split,
+        });
+    }
     let req = StackReq::any_of(&[Par::Seq, Par::rayon(0)].map(|par| {
         StackReq::any_of(&[
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
@@ -129,6 +170,7 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
         l_values,
         mem,
         threads,
+        split,
     })
 }
 
@@ -170,6 +212,7 @@ impl CholeskyFactor {
             l_values,
             mem,
             threads,
+            split,
         } = analysis(pattern, params)?;
         Ok(CholeskyFactor {
             symbolic,
@@ -178,6 +221,7 @@ impl CholeskyFactor {
             mem,
             threads,
             par: Par::Seq,
+            split,
             params,
             factored: false,
             symbolic_analyses: 1,
@@ -192,12 +236,17 @@ impl CholeskyFactor {
 
     /// Redo the symbolic analysis for a new pattern (counted).
     fn reanalyze(&mut self, pattern: &Pattern) -> Result<(), FemError> {
+        // drop the old factor first: the new one may be as large
+        self.split = None;
+        self.l_values = Vec::new();
         let Analysis {
             symbolic,
             l_values,
             mem,
             threads,
+            split,
         } = analysis(pattern, self.params)?;
+        self.split = split;
         self.symbolic = symbolic;
         self.threads = threads;
         self.l_values = l_values;
@@ -208,9 +257,13 @@ impl CholeskyFactor {
         Ok(())
     }
 
-    /// Number of stored values of L.
+    /// Number of stored values of L (of both halves and the dense separator
+    /// factor for a split factor).
     pub fn factor_nnz(&self) -> usize {
-        self.symbolic.len_val()
+        match &self.split {
+            Some(s) => s.nnz(),
+            None => self.symbolic.len_val(),
+        }
     }
 
     /// Memory taken by the factor values, in bytes.
@@ -221,8 +274,22 @@ impl CholeskyFactor {
     /// Estimated floating-point operations of one numeric factorisation,
     /// Σ_j c_j² over the column counts c_j of L (supernodal: column k of a
     /// supernode of width w with r off-diagonal rows has c = w − k + r).
+    /// A split factor counts both halves and ≈ k³ for its separator's
+    /// dense terms (k separator unknowns).
     pub fn factor_flops(&self) -> f64 {
-        flops(&self.symbolic)
+        match &self.split {
+            Some(s) => s.flops(),
+            None => flops(&self.symbolic),
+        }
+    }
+
+    /// For a split factor ([`ThreadPolicy::Split`]): the separator's number
+    /// of unknowns and the estimated flops of the larger half (the critical
+    /// path on two threads); `None` when the factorisation is not split.
+    pub fn split(&self) -> Option<(usize, f64)> {
+        self.split
+            .as_ref()
+            .map(|s| (s.separator_len(), s.critical_flops()))
     }
 
     /// The ordering and thread policy this factor was analysed with.
@@ -233,7 +300,7 @@ impl CholeskyFactor {
     /// Whether the last numeric factorisation (and so the solves) ran on
     /// rayon's threads, as the [`ThreadPolicy`] chose.
     pub fn is_parallel(&self) -> bool {
-        !matches!(self.par, Par::Seq)
+        self.split.is_some() || !matches!(self.par, Par::Seq)
     }
 
     /// Number of supernodes and the widest one (columns), or `None` for a
@@ -278,6 +345,13 @@ impl CholeskyFactor {
         let n = pattern.n();
         self.numeric_factorizations += 1;
         self.factored = false;
+        if let Some(split) = &mut self.split {
+            split.factorize(values).map_err(|p| {
+                FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot: p.0 })
+            })?;
+            self.factored = true;
+            return Ok(());
+        }
         // SAFETY: `is_for` above: this exact pattern was validated by
         // `new_checked` in its symbolic analysis.
         let sym = unsafe {
@@ -314,6 +388,10 @@ impl CholeskyFactor {
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> bool {
         if !self.factored {
             return false;
+        }
+        if let Some(split) = &mut self.split {
+            split.solve_in_place(rhs);
+            return true;
         }
         let n = rhs.len();
         let llt = LltRef::<'_, usize, f64>::new(&self.symbolic, &self.l_values);

@@ -25,7 +25,7 @@ use faer::Par;
 use serde::{Deserialize, Serialize};
 
 /// Whether the numeric factorisation and the solves use rayon's threads.
-/// The names (`"auto"`, `"sequential"`, `"parallel"`) are stable.
+/// The names (`"auto"`, `"sequential"`, `"parallel"`, `"split"`) are stable.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ThreadPolicy {
@@ -38,6 +38,13 @@ pub enum ThreadPolicy {
     Sequential,
     /// Always all threads of the current rayon pool.
     Parallel,
+    /// Tree-level parallelism: the two halves of a vertex separator are
+    /// factorised concurrently, each on one thread, and the separator densely
+    /// (`split.rs`), when the pool has at least two threads at the symbolic
+    /// analysis and the factorisation is large enough to pay
+    /// ([`super::SPLIT_MIN_FLOPS`]); otherwise as [`ThreadPolicy::Sequential`].
+    /// The same bits run to run for a given number of threads.
+    Split,
 }
 
 /// [`ThreadPolicy::Auto`] times both modes again after this many
@@ -46,10 +53,11 @@ pub const REPROBE_EVERY: usize = 32;
 
 impl ThreadPolicy {
     /// Every policy.
-    pub const ALL: [ThreadPolicy; 3] = [
+    pub const ALL: [ThreadPolicy; 4] = [
         ThreadPolicy::Auto,
         ThreadPolicy::Sequential,
         ThreadPolicy::Parallel,
+        ThreadPolicy::Split,
     ];
 
     /// The stable name.
@@ -58,6 +66,7 @@ impl ThreadPolicy {
             ThreadPolicy::Auto => "auto",
             ThreadPolicy::Sequential => "sequential",
             ThreadPolicy::Parallel => "parallel",
+            ThreadPolicy::Split => "split",
         }
     }
 
@@ -96,7 +105,8 @@ impl ThreadChooser {
         let parallel = self.supernodal
             && rayon::current_num_threads() > 1
             && match self.policy {
-                ThreadPolicy::Sequential => false,
+                // a split factor does not ask; without one, it is sequential
+                ThreadPolicy::Sequential | ThreadPolicy::Split => false,
                 ThreadPolicy::Parallel => true,
                 ThreadPolicy::Auto => match (self.seq, self.par) {
                     (None, _) => false,
