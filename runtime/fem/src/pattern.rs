@@ -254,14 +254,37 @@ pub(crate) fn build(
         validate(set, nv, dim)?;
     }
     let active: Vec<bool> = (0..nv).map(|v| dofs.vertex_has_free(v)).collect();
+    let (keys, touched) = vertex_pair_keys(sets, dofs, &active);
+    let (vptr, vrow) = vertex_csc(keys, dofs.n_unknowns());
+    let adj = VertexAdjacency {
+        dofs,
+        vptr: &vptr,
+        vrow: &vrow,
+    };
+    let pattern = dof_pattern(&adj, &touched)?;
+    let plans = sets
+        .iter()
+        .map(|set| term_plan(set, dofs, &active, &pattern))
+        .collect();
+    Ok((pattern, plans))
+}
 
-    // Unknowns are numbered vertex by vertex (in some vertex order), so a
-    // vertex with a free DOF is identified by its first unknown f(v), and
-    // f orders vertices exactly as their unknowns are ordered.
+/// The adjacent vertex pairs of all stencils as sorted, deduplicated u64
+/// keys f(col)·2³² + f(row) with f(row) ≤ f(col), plus every active
+/// diagonal; and which vertices some stencil touches.
+///
+/// Unknowns are numbered vertex by vertex (in some vertex order), so a
+/// vertex with a free DOF is identified by its first unknown f(v), and
+/// f orders vertices exactly as their unknowns are ordered.
+fn vertex_pair_keys(
+    sets: &[StencilSet<'_>],
+    dofs: &DofMap,
+    active: &[bool],
+) -> (Vec<u64>, Vec<bool>) {
+    let nv = dofs.n_vertices();
+    let dim = dofs.dim();
     let table = dofs.unknown_table();
     let first = |v: usize| first_unknown(table, dim, v);
-
-    // vertex pairs as u64 keys f(col)·2³² + f(row), f(row) ≤ f(col), plus every active diagonal
     let mut keys: Vec<u64> = Vec::new();
     let mut touched = vec![false; nv];
     for set in sets {
@@ -287,9 +310,12 @@ pub(crate) fn build(
     }));
     keys.par_sort_unstable();
     keys.dedup();
+    (keys, touched)
+}
 
-    // vertex-level upper CSC, indexed by first unknown
-    let n = dofs.n_unknowns();
+/// The vertex-level upper CSC (column pointers, rows) over `n` unknowns,
+/// indexed by first unknown, from the sorted pair keys.
+fn vertex_csc(keys: Vec<u64>, n: usize) -> (Vec<usize>, Vec<u32>) {
     let mut vptr = vec![0usize; n + 1];
     for &k in &keys {
         vptr[(k >> 32) as usize + 1] += 1;
@@ -298,15 +324,15 @@ pub(crate) fn build(
         vptr[q + 1] += vptr[q];
     }
     let vrow: Vec<u32> = keys.iter().map(|&k| (k & 0xffff_ffff) as u32).collect();
-    drop(keys);
+    (vptr, vrow)
+}
 
-    // DOF-level upper CSC over unknowns: rows of column j are the unknowns
-    // ≤ j of the vertices adjacent to j's vertex, already in ascending order
-    let adj = VertexAdjacency {
-        dofs,
-        vptr: &vptr,
-        vrow: &vrow,
-    };
+/// The DOF-level upper CSC over unknowns: rows of column j are the unknowns
+/// ≤ j of the vertices adjacent to j's vertex, already in ascending order.
+/// Unknowns of vertices no stencil touches are listed as isolated.
+fn dof_pattern(adj: &VertexAdjacency<'_>, touched: &[bool]) -> Result<Pattern, FemError> {
+    let dofs = adj.dofs;
+    let (n, dim) = (dofs.n_unknowns(), dofs.dim());
     let mut col_ptr = vec![0usize; n + 1];
     for j in 0..n {
         let mut cnt = 0;
@@ -330,62 +356,63 @@ pub(crate) fn build(
         });
     }
     let isolated: Vec<usize> = (0..n).filter(|&j| !touched[dofs.dof(j) / dim]).collect();
-    let pattern = Pattern {
+    Ok(Pattern {
         n,
         col_ptr,
         row_idx,
         isolated,
-    };
+    })
+}
 
-    let plans = sets
-        .iter()
-        .map(|set| {
-            let k = set.arity * dim;
-            let n_local = k * (k + 1) / 2;
-            // colours list their stencils in increasing index order, so the
-            // term's own per-stencil data (vertex lists, rest shapes) is streamed
-            let colouring = colour_stencils(nv, set.arity, set.stencils, &active);
-            // per-stencil tables stored in processing order: streamed, not gathered
-            let n_st = colouring.order.len();
-            let mut unknowns = vec![u32::MAX; n_st * k];
-            unknowns
-                .par_chunks_mut(k.max(1))
-                .zip(colouring.order.par_iter())
-                .for_each(|(out, &s)| {
-                    let st = &set.stencils[s as usize * set.arity..(s as usize + 1) * set.arity];
-                    for (a, u) in out.iter_mut().enumerate() {
-                        *u = table[st[a / dim] * dim + a % dim];
-                    }
-                });
-            let mut slots = vec![NO_SLOT; n_st * n_local];
-            slots
-                .par_chunks_mut(n_local.max(1))
-                .zip(unknowns.par_chunks(k.max(1)))
-                .for_each(|(out, unk)| {
-                    let mut q = 0;
-                    for a in 0..k {
-                        for b in a..k {
-                            let (ia, ib) = (unk[a], unk[b]);
-                            if ia != u32::MAX && ib != u32::MAX {
-                                // in the pattern by construction
-                                out[q] = pattern
-                                    .slot(ia as usize, ib as usize)
-                                    .map_or(NO_SLOT, |x| x as u32);
-                            }
-                            q += 1;
-                        }
-                    }
-                });
-            TermPlan {
-                k,
-                n_local,
-                unknowns,
-                slots,
-                colouring,
+/// One term's plan: its stencil colouring, and per stencil (in processing
+/// order) the unknown of each local DOF and the pattern slot of each
+/// upper-triangle local pair.
+fn term_plan(set: &StencilSet<'_>, dofs: &DofMap, active: &[bool], pattern: &Pattern) -> TermPlan {
+    let (nv, dim) = (dofs.n_vertices(), dofs.dim());
+    let table = dofs.unknown_table();
+    let k = set.arity * dim;
+    let n_local = k * (k + 1) / 2;
+    // colours list their stencils in increasing index order, so the
+    // term's own per-stencil data (vertex lists, rest shapes) is streamed
+    let colouring = colour_stencils(nv, set.arity, set.stencils, active);
+    // per-stencil tables stored in processing order: streamed, not gathered
+    let n_st = colouring.order.len();
+    let mut unknowns = vec![u32::MAX; n_st * k];
+    unknowns
+        .par_chunks_mut(k.max(1))
+        .zip(colouring.order.par_iter())
+        .for_each(|(out, &s)| {
+            let st = &set.stencils[s as usize * set.arity..(s as usize + 1) * set.arity];
+            for (a, u) in out.iter_mut().enumerate() {
+                *u = table[st[a / dim] * dim + a % dim];
             }
-        })
-        .collect();
-    Ok((pattern, plans))
+        });
+    let mut slots = vec![NO_SLOT; n_st * n_local];
+    slots
+        .par_chunks_mut(n_local.max(1))
+        .zip(unknowns.par_chunks(k.max(1)))
+        .for_each(|(out, unk)| {
+            let mut q = 0;
+            for a in 0..k {
+                for b in a..k {
+                    let (ia, ib) = (unk[a], unk[b]);
+                    if ia != u32::MAX && ib != u32::MAX {
+                        // in the pattern by construction
+                        out[q] = pattern
+                            .slot(ia as usize, ib as usize)
+                            .map_or(NO_SLOT, |x| x as u32);
+                    }
+                    q += 1;
+                }
+            }
+        });
+    TermPlan {
+        k,
+        n_local,
+        unknowns,
+        slots,
+        colouring,
+    }
 }
 
 #[cfg(test)]
