@@ -29,6 +29,7 @@ pub mod energies;
 pub mod generic_kernel;
 pub mod graph_eval;
 pub mod linalg;
+pub mod mtx;
 pub mod reference;
 pub mod report;
 pub mod scaling;
