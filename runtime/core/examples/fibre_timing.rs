@@ -11,9 +11,11 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use ecc_runtime::energies::{FibreArap, FibreFung, FibreStvk};
-use ecc_runtime::fibre::{FibreDerivs, FibreEnergy, FibreUse, fibre_element_eval, unit_fibre};
+use ecc_runtime::fibre::{
+    FibreDerivs, FibreEnergy, FibreUse, fibre_element_eval, fibre_f, unit_fibre,
+};
 use ecc_runtime::reference::project_psd_numeric;
-use ecc_runtime::{Filter, Rest};
+use ecc_runtime::{Filter, Rest, element_f};
 use nalgebra::SVector;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -36,6 +38,25 @@ impl FibreEnergy<3> for Mixed {
     }
     fn uses(&self) -> FibreUse {
         FibreUse::Both
+    }
+}
+
+/// ψ = (I4 − 1)²: the I4-only path (7 × 7 block, eq. R4).
+struct I4Only;
+impl FibreEnergy<3> for I4Only {
+    fn name(&self) -> &str {
+        "I4 only"
+    }
+    fn fibre(&self, i4: f64, _i5: f64) -> FibreDerivs {
+        FibreDerivs {
+            psi: (i4 - 1.0).powi(2),
+            d4: 2.0 * (i4 - 1.0),
+            d44: 2.0,
+            ..FibreDerivs::default()
+        }
+    }
+    fn uses(&self) -> FibreUse {
+        FibreUse::I4
     }
 }
 
@@ -76,10 +97,11 @@ fn time(els: &[Elem], f: impl Fn(&Elem) -> f64) -> f64 {
 
 fn main() {
     let els = elements(4096);
-    let energies: [&dyn FibreEnergy<3>; 4] = [
+    let energies: [&dyn FibreEnergy<3>; 5] = [
         &FibreStvk { mu: 1.0 },
         &FibreFung { k1: 1.0, k2: 1.0 },
         &FibreArap { mu: 1.0 },
+        &I4Only,
         &Mixed,
     ];
     println!(
@@ -98,6 +120,45 @@ fn main() {
             "| {} | {analytic:.0} | {numeric:.0} | {:.1}× |",
             e.name(),
             numeric / analytic
+        );
+    }
+    point_table(&els);
+}
+
+/// Per point (F-space 9 × 9) for the I4 energies: the reduced path of
+/// `fibre/reduced.rs` (`Filter::Clamp`) against the previous one, the raw
+/// F5 Hessian (`Filter::None`) plus a 9 × 9 `SymmetricEigen`.
+fn point_table(els: &[Elem]) {
+    let fs: Vec<_> = els
+        .iter()
+        .map(|(r, x, a)| (element_f::<3>(r, x), *a))
+        .collect();
+    println!();
+    println!("| energy | reduced, 9×9 F-space (ns) | F5 + 9×9 eigensolve (ns) | speed-up |");
+    println!("|---|---|---|---|");
+    for e in [&I4Only as &dyn FibreEnergy<3>, &Mixed] {
+        let best = |g: &dyn Fn(usize) -> f64| {
+            (0..3)
+                .map(|_| {
+                    let t = Instant::now();
+                    black_box((0..fs.len()).map(g).sum::<f64>());
+                    t.elapsed().as_secs_f64() * 1e9 / fs.len() as f64
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let reduced = best(&|i| {
+            let (f, a) = &fs[i];
+            fibre_f(e, f, a, Filter::Clamp, true).hess[(0, 0)]
+        });
+        let previous = best(&|i| {
+            let (f, a) = &fs[i];
+            let raw = fibre_f(e, f, a, Filter::None, true).hess;
+            project_psd_numeric(&raw, Filter::Clamp)[(0, 0)]
+        });
+        println!(
+            "| {} | {reduced:.0} | {previous:.0} | {:.1}× |",
+            e.name(),
+            previous / reduced
         );
     }
 }

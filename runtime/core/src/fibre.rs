@@ -29,6 +29,7 @@ mod dim;
 mod element;
 pub mod frame;
 pub mod point;
+mod reduced;
 
 pub use dim::{FibreDim, FibrePoint, fibre_element_eval, fibre_element_psi, fibre_f, unit_fibre};
 pub use frame::{invariant4, invariant5};

@@ -5,9 +5,12 @@
 use nalgebra::{SMatrix, SVector};
 
 use super::element::{chain_matrix, closed_element, psi_kernel};
+use super::frame::Frame;
 use super::point::{FibrePath, Hess, point_kernel};
+use super::reduced::{reduced_hessian, sym_eigen};
 use crate::dim::{Dim, FMat, FVec, Nodes, Space};
 use crate::element::{ElementEval, Rest, element_f};
+use crate::fibre::FibreDerivs;
 use crate::fibre::FibreEnergy;
 use crate::filter::Filter;
 use crate::reference::project_psd_numeric;
@@ -54,8 +57,22 @@ pub trait FibreDim<const D: usize>: Dim<D> {
         Space<D>: Dim<D>;
 }
 
+/// The reduced projection of `Space<$d>` ([`reduced_hessian`] with
+/// K = d² − d + 1 for ψ(I4) and K = d² otherwise).
+macro_rules! reduce_fn {
+    ($d:literal, $n:literal, $k4:literal) => {
+        |fr: &Frame<$d>, d: &FibreDerivs, filter: Filter, i4_only: bool| {
+            if i4_only {
+                reduced_hessian::<$d, $n, $k4>(fr, d, filter, true, sym_eigen::<$k4>)
+            } else {
+                reduced_hessian::<$d, $n, $n>(fr, d, filter, false, sym_eigen::<$n>)
+            }
+        }
+    };
+}
+
 macro_rules! fibre_dim {
-    ($d:literal, $n:literal, $k:literal, $ne:literal) => {
+    ($d:literal, $n:literal, $k:literal, $ne:literal, $k4:literal) => {
         impl FibreDim<$d> for Space<$d> {
             fn fibre_f<E: FibreEnergy<$d> + ?Sized>(
                 e: &E,
@@ -71,6 +88,7 @@ macro_rules! fibre_dim {
                     filter,
                     want_hessian,
                     project_psd_numeric::<$n>,
+                    reduce_fn!($d, $n, $k4),
                 );
                 FibrePoint {
                     psi,
@@ -96,6 +114,7 @@ macro_rules! fibre_dim {
                     filter,
                     want_hessian,
                     project_psd_numeric::<$n>,
+                    reduce_fn!($d, $n, $k4),
                 );
                 let w = chain_matrix::<$d, $k, $n, $ne>(rest);
                 let m = rest.measure;
@@ -121,8 +140,8 @@ macro_rules! fibre_dim {
     };
 }
 
-fibre_dim!(2, 4, 3, 6);
-fibre_dim!(3, 9, 4, 12);
+fibre_dim!(2, 4, 3, 6, 3);
+fibre_dim!(3, 9, 4, 12, 7);
 
 /// ψ, vec(∂ψ/∂F) and the `filter`ed ∂²ψ/∂f² of a fibre energy at F for the
 /// unit rest fibre `a` (see [`super::point`] for the eigensystems).

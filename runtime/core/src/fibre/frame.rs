@@ -91,7 +91,7 @@ impl<const D: usize> Frame<D> {
     }
 
     /// ∂I4/∂M (singular frame), eq. F4.
-    fn grad4_m(&self) -> SMatrix<f64, D, D> {
+    pub(crate) fn grad4_m(&self) -> SMatrix<f64, D, D> {
         let (s, b) = (&self.svd.sigma, &self.b);
         SMatrix::from_fn(|r, c| {
             if r == c {

@@ -51,8 +51,15 @@ pub enum FibrePath {
     Degenerate,
     /// Closed form (eqs. P3–P5): ψ has no I4 derivative at this point.
     ClosedI5,
-    /// Analytic raw Hessian, projected by a d² × d² symmetric eigensolve.
+    /// Analytic raw Hessian (eq. F5), projected by a d² × d² symmetric
+    /// eigensolve: the raw (`Filter::None`) request and the fallback at a
+    /// pole σ_i + σ_j = 0.
     Numeric,
+    /// ψ with I4 terms: the closed-form I4 Hessian on its range (eq. R3 of
+    /// `fibre/reduced.rs`) and an eigensolve of that block only: 7 × 7 in 3D
+    /// and 3 × 3 in 2D for ψ(I4) (d − 1 null modes in closed form, eq. R4),
+    /// d² × d² for ψ(I4, I5).
+    Reduced,
 }
 
 /// The three distinct eigenvalues of a ψ without I4 terms (eqs. P3–P5):
@@ -135,12 +142,19 @@ impl<const D: usize, const N: usize> Hess<D, N> {
     }
 }
 
+/// The reduced projection of one size: (frame, partials, filter, ψ has no
+/// I5 derivative) ↦ filtered F-space Hessian, `None` at a pole.
+pub(crate) type Reduce<const D: usize, const N: usize> =
+    fn(&Frame<D>, &FibreDerivs, Filter, bool) -> Option<SMatrix<f64, N, N>>;
+
 /// Result of [`point_kernel`]: ψ, vec(∂ψ/∂F), ∂²ψ/∂f², path.
 pub(crate) type PointOut<const D: usize, const N: usize> =
     (f64, SVector<f64, N>, Hess<D, N>, FibrePath);
 
 /// ψ, gradient and (if asked) Hessian at F; `project` is the d² × d²
 /// numeric projection (monomorphised per size by the caller).
+/// `reduce` is [`super::reduced::reduced_hessian`] monomorphised for this
+/// size (`None` falls back to `project`).
 pub(crate) fn point_kernel<const D: usize, const N: usize, E: FibreEnergy<D> + ?Sized>(
     e: &E,
     f: &SMatrix<f64, D, D>,
@@ -148,6 +162,7 @@ pub(crate) fn point_kernel<const D: usize, const N: usize, E: FibreEnergy<D> + ?
     filter: Filter,
     want_hessian: bool,
     project: impl Fn(&SMatrix<f64, N, N>, Filter) -> SMatrix<f64, N, N>,
+    reduce: Reduce<D, N>,
 ) -> PointOut<D, N> {
     let degenerate = |psi: f64| {
         (
@@ -182,12 +197,22 @@ pub(crate) fn point_kernel<const D: usize, const N: usize, E: FibreEnergy<D> + ?
         Some(fr) => {
             let g4: SVector<f64, N> = fr.grad4();
             let grad = SVector::from_fn(|k, _| mul0(d.d4, g4[k]) + mul0(d.d5, g5[k]));
-            let hess = Hess::Full(if want_hessian {
-                project(&raw_hessian(&fr, a, &d, &g4, &g5), filter)
-            } else {
-                SMatrix::zeros()
-            });
-            (d.psi, grad, hess, FibrePath::Numeric)
+            if !want_hessian {
+                return (
+                    d.psi,
+                    grad,
+                    Hess::Full(SMatrix::zeros()),
+                    FibrePath::Reduced,
+                );
+            }
+            let i4_only = d.d5 == 0.0 && d.d45 == 0.0 && d.d55 == 0.0;
+            if !filter.is_raw()
+                && let Some(h) = reduce(&fr, &d, filter, i4_only)
+            {
+                return (d.psi, grad, Hess::Full(h), FibrePath::Reduced);
+            }
+            let h = project(&raw_hessian(&fr, a, &d, &g4, &g5), filter);
+            (d.psi, grad, Hess::Full(h), FibrePath::Numeric)
         }
     }
 }
