@@ -43,7 +43,11 @@
 //! M), so if every analytic eigenvalue is ≥ 0 (≥ ε·cond(M) for `ClampEps`),
 //! f(C) = C and P(K) = K: the element is evaluated exactly as by
 //! [`crate::element_eval`]. Only indefinite elements pay for the symmetric
-//! eigensolve of C.
+//! eigensolve of C: a fixed-size cyclic Jacobi ([`super::jacobi`]; nalgebra's
+//! `SymmetricEigen` only as its fallback). By Sylvester's law of inertia
+//! C = S H S (S = M^{½} ⊗ I invertible) has exactly as many negative
+//! eigenvalues as the analytic H, so these are the elements whose F-space
+//! Hessian the clamp changes.
 //!
 //! **Filters** mean what they mean for [`crate::element_eval`]:
 //! * `Clamp` max(c, 0), `Abs` |c|, `None` the raw K (no projection);
@@ -213,6 +217,12 @@ fn finite_modes<const D: usize>(s: &Spectral<D>) -> Spectral<D> {
 
 /// The nodes-1…d block of P(K) (eq. 4): eigensolve of C, then
 /// |q| Σ f(c) vec(Y L) vec(Y L)ᵀ over the eigenvectors y = vec Y.
+///
+/// Not the cheaper-looking rank-k form |q| Wᵀ C W + |q| Σ_{f(c)≠c} (f(c) − c) z zᵀ
+/// (k = number of negative analytic eigenvalues, by Sylvester's law of
+/// inertia): where a huge negative mode is clamped (ARAP's twist at
+/// σ_i + σ_j ≈ 0, c ≈ −1e16) it cancels the raw block to ε|c| and leaves the
+/// result indefinite; the sum over eigenpairs is PSD by construction.
 fn projected_block<const D: usize, const R: usize>(
     u: &[[f64; D]; D],
     v: &SMatrix<f64, D, D>,
@@ -301,9 +311,21 @@ pub(crate) fn kernel<
 /// A symmetric eigensolver of a fixed size R: (values, unit eigenvectors).
 pub(crate) type SymEigen<const R: usize> = fn(&[[f64; R]; R]) -> ([f64; R], [[f64; R]; R]);
 
+/// The symmetric eigensolver of the kernel (R = 4 or 9), as a [`SymEigen`]:
+/// the cyclic Jacobi method of [`super::jacobi`] (fixed size, no heap), with
+/// nalgebra's `SymmetricEigen` as the fallback should Jacobi refuse (a
+/// non-finite entry) or not converge.
+pub(crate) fn sym_eigen_n<const R: usize>(c: &[[f64; R]; R]) -> ([f64; R], [[f64; R]; R])
+where
+    Const<R>: DimSub<U1>,
+    DefaultAllocator: Allocator<DimDiff<Const<R>, U1>>,
+{
+    super::jacobi::jacobi_eigen(c).unwrap_or_else(|| sym_eigen_nalgebra(c))
+}
+
 /// nalgebra's `SymmetricEigen` of a symmetric R×R matrix (R = 4 or 9), as a
 /// [`SymEigen`]: the kernel stays free of nalgebra's size bounds.
-pub(crate) fn sym_eigen_n<const R: usize>(c: &[[f64; R]; R]) -> ([f64; R], [[f64; R]; R])
+pub(crate) fn sym_eigen_nalgebra<const R: usize>(c: &[[f64; R]; R]) -> ([f64; R], [[f64; R]; R])
 where
     Const<R>: DimSub<U1>,
     DefaultAllocator: Allocator<DimDiff<Const<R>, U1>>,

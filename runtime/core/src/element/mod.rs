@@ -3,6 +3,7 @@
 
 pub(crate) mod congruence;
 mod eval;
+pub(crate) mod jacobi;
 pub(crate) mod rest;
 
 pub use congruence::{Congruence, element_eval_projected, metric};
