@@ -103,6 +103,8 @@ impl GraphEval {
                     Sym::Param(i) => {
                         R::from_f64(params.get(i as usize).copied().unwrap_or(f64::NAN))
                     }
+                    // Isotropic energies only: a fibre part has no σ.
+                    Sym::I4 | Sym::I5 | Sym::SignI4 => R::from_f64(f64::NAN),
                 },
                 Node::Add(c) => c.iter().fold(zero, |a, c| a + v(c)),
                 Node::Mul(c) => c.iter().fold(R::one(), |a, c| a * v(c)),

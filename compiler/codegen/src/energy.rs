@@ -323,6 +323,9 @@ fn leaf_namer<'c>(ctx: &'c Ctx<'_>) -> impl Fn(Sym) -> String + 'c {
         Sym::I2 => "i2".into(),
         Sym::I3 => "i3".into(),
         Sym::Param(k) => ctx.locals[k as usize].clone(),
+        Sym::I4 => "i4".into(),
+        Sym::I5 => "i5".into(),
+        Sym::SignI4 => "sign_i4".into(),
     }
 }
 
@@ -355,7 +358,8 @@ fn prelude(ctx: &Ctx, dim: u8, plan: &Plan, extra_sigma: &[usize]) -> TokenStrea
                 let (first, rest) = (&s[0], &s[1..]);
                 out.extend(quote!(let i3 = #first #(* #rest)*;));
             }
-            Sym::Sigma(_) => {}
+            // Only in a fibre part, whose prelude is `fibre::prelude`.
+            Sym::Sigma(_) | Sym::I4 | Sym::I5 | Sym::SignI4 => {}
         }
     }
     out

@@ -181,6 +181,20 @@ pub enum Error {
         /// Requested dimension.
         requested: u8,
     },
+    /// A fibre (anisotropic) construct used wrongly: I4/I5 without `fiber`,
+    /// a term coupling the fibre and isotropic parts, `sign` of something
+    /// other than I4, aᵀC²a, a second `fiber`.
+    #[error("{message}")]
+    Fibre {
+        /// The offending name, term or statement.
+        span: Span,
+        /// What is wrong.
+        message: String,
+        /// The label under the span.
+        label: String,
+        /// Notes and hints (`help: …`, `note: …`).
+        notes: Vec<String>,
+    },
 }
 
 impl Error {
@@ -202,7 +216,8 @@ impl Error {
             | Error::ParamNotFinite { span, .. }
             | Error::NumberNotF64 { span, .. }
             | Error::BadDim { span, .. }
-            | Error::DimMismatch { span, .. } => *span,
+            | Error::DimMismatch { span, .. }
+            | Error::Fibre { span, .. } => *span,
         }
     }
 
@@ -279,6 +294,7 @@ impl Error {
             ),
             Error::BadDim { span, .. } => (vec![primary(*span, "expected 2 or 3")], vec![]),
             Error::DimMismatch { span, .. } => (vec![primary(*span, "dimension declared here")], vec![]),
+            Error::Fibre { span, label, notes, .. } => (vec![primary(*span, label)], notes.clone()),
         };
         Diagnostic::error()
             .with_message(msg)

@@ -110,6 +110,67 @@ pub struct DimIr {
     /// wherever a condition fails. Deduplicated; conditions the CAS proves
     /// always true (`exp(x) > 0`, `I2 + 1 > 0`) are not listed.
     pub domain: Vec<DomainGuard>,
+    /// The fibre part ψ(I4, I5) of an energy with `fiber a` (Ψ = Ψ_iso + ψ;
+    /// everything above describes Ψ_iso); `None` without `fiber`.
+    pub fibre: Option<FibreIr>,
+}
+
+/// Which fibre invariants ψ reads, decided symbolically (mirrors
+/// `ecc_runtime::FibreUse`, which this crate does not depend on).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum FibreUses {
+    /// ψ is constant.
+    None,
+    /// ψ reads I4 (or sign(I4)) only.
+    I4,
+    /// ψ reads I5 only.
+    I5,
+    /// ψ reads both.
+    Both,
+}
+
+/// The fibre part ψ(I4, I5) of one dimension: its own graph, whose leaves
+/// are `Num`, `Sym::I4`, `Sym::I5`, `Sym::SignI4` and `Sym::Param(k)` (the
+/// energy's shared parameters).
+#[derive(Clone, Debug)]
+pub struct FibreIr {
+    /// The direction's name as declared (`fiber a`).
+    pub direction: String,
+    /// The expression DAG the ids below index into.
+    pub graph: Graph,
+    /// ψ.
+    pub psi: Id,
+    /// ∂ψ/∂I4 (sign(I4) has derivative 0).
+    pub d4: Id,
+    /// ∂ψ/∂I5.
+    pub d5: Id,
+    /// ∂²ψ/∂I4².
+    pub d44: Id,
+    /// ∂²ψ/∂I4∂I5.
+    pub d45: Id,
+    /// ∂²ψ/∂I5².
+    pub d55: Id,
+    /// Which invariants ψ reads.
+    pub uses: FibreUses,
+    /// d4, d44 and d45 are identically 0: the closed-form eigensystem of
+    /// I5 (Kim & Eberle 2022 §7.3; `ecc_runtime::fibre::point`, P3–P5)
+    /// applies everywhere, even if ψ reads sign(I4).
+    pub closed_form: bool,
+    /// ψ's domain as written (same rules as [`DimIr::domain`]): ψ = +∞
+    /// wherever an active condition fails.
+    pub domain: Vec<DomainGuard>,
+}
+
+impl FibreIr {
+    /// The domain conditions every evaluator must test.
+    pub fn active_guards(&self) -> impl Iterator<Item = &DomainGuard> {
+        self.domain.iter().filter(|g| !g.enforced_by_psi)
+    }
+
+    /// [ψ, d4, d5, d44, d45, d55].
+    pub fn roots(&self) -> [Id; 6] {
+        [self.psi, self.d4, self.d5, self.d44, self.d45, self.d55]
+    }
 }
 
 impl DimIr {

@@ -59,8 +59,8 @@ pub use cas::{Env, Graph, Id, Node, Sym, Tape, eval, eval_many};
 pub use compile::{compile, compile_dim, slot_pairs};
 pub use diag::{Diagnostics, Error};
 pub use ir::{
-    DimIr, DomainCond, DomainGuard, InvariantDerivs, Module, PairIr, PairKind, ParamDecl, Path,
-    ScaleIr, SpectralIr,
+    DimIr, DomainCond, DomainGuard, FibreIr, FibreUses, InvariantDerivs, Module, PairIr, PairKind,
+    ParamDecl, Path, ScaleIr, SpectralIr,
 };
 pub use load::{LoadError, Source, energy_name, load_file, load_text};
 pub use poly::Proof;

@@ -217,6 +217,10 @@ impl Ctx<'_> {
             Sym::I2 => "i2".into(),
             Sym::I3 => "i3".into(),
             Sym::Param(k) => self.fields[k as usize].clone(),
+            // Fibre parts are refused before any C++ is printed.
+            Sym::I4 => "i4".into(),
+            Sym::I5 => "i5".into(),
+            Sym::SignI4 => "sign_i4".into(),
         }
     }
 

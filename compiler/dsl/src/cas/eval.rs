@@ -16,6 +16,8 @@ pub struct Env {
     pub inv: [f64; 3],
     /// Parameter values by index.
     pub params: Vec<f64>,
+    /// I4, I5 and sign(I4) of a fibre part (NaN unless set by [`Env::with_fibre`]).
+    pub fibre: [f64; 3],
 }
 
 impl Env {
@@ -32,7 +34,15 @@ impl Env {
             sigma: s,
             inv: [i1, i2, i3],
             params: params.to_vec(),
+            fibre: [f64::NAN; 3],
         }
+    }
+
+    /// This environment with the fibre invariants I4, I5 set; sign(I4) is
+    /// +1 for I4 > 0 and −1 otherwise (NaN for a NaN I4).
+    pub fn with_fibre(mut self, i4: f64, i5: f64) -> Self {
+        self.fibre = [i4, i5, sign_i4(i4)];
+        self
     }
 
     fn sym(&self, s: Sym) -> f64 {
@@ -42,7 +52,22 @@ impl Env {
             Sym::I3 => self.inv[2],
             Sym::Sigma(k) => self.sigma.get(k as usize).copied().unwrap_or(f64::NAN),
             Sym::Param(k) => self.params.get(k as usize).copied().unwrap_or(f64::NAN),
+            Sym::I4 => self.fibre[0],
+            Sym::I5 => self.fibre[1],
+            Sym::SignI4 => self.fibre[2],
         }
+    }
+}
+
+/// sign(I4) as every back end computes it: +1 for I4 > 0, −1 otherwise
+/// (I4 = 0 included, HOBAK's convention), NaN for NaN.
+pub fn sign_i4(i4: f64) -> f64 {
+    if i4 > 0.0 {
+        1.0
+    } else if i4.is_nan() {
+        f64::NAN
+    } else {
+        -1.0
     }
 }
 

@@ -158,7 +158,7 @@ impl Graph {
     }
 
     /// Whether `id` may depend on `sym` (conservative: `false` is exact,
-    /// `true` may be a false positive only for parameters beyond index 57).
+    /// `true` may be a false positive only for parameters beyond index 54).
     pub fn may_depend(&self, id: Id, sym: Sym) -> bool {
         self.masks[id.index()] & sym_mask(sym) != 0
     }
@@ -171,6 +171,11 @@ impl Graph {
     /// Whether `id` may depend on any of I1, I2, I3.
     pub fn uses_invariants(&self, id: Id) -> bool {
         self.masks[id.index()] & 0b111 != 0
+    }
+
+    /// Whether `id` may depend on a fibre symbol (I4, I5, sign(I4)).
+    pub fn uses_fibre(&self, id: Id) -> bool {
+        self.masks[id.index()] & 0b111_000_000 != 0
     }
 
     /// Whether `id` is a constant expression (no symbol at all).
@@ -213,6 +218,9 @@ fn sym_mask(sym: Sym) -> u64 {
         Sym::I2 => 2,
         Sym::I3 => 4,
         Sym::Sigma(k) => 8 << (k % 3),
-        Sym::Param(k) => 64 << (k % 58),
+        Sym::I4 => 64,
+        Sym::I5 => 128,
+        Sym::SignI4 => 256,
+        Sym::Param(k) => 512 << (k % 55),
     }
 }

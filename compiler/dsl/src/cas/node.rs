@@ -18,8 +18,10 @@ impl Id {
 
 /// A leaf symbol.
 ///
-/// The derived order (I1 < I2 < I3 < σ0 < σ1 < σ2 < params) is the order the
-/// canonical printer uses inside products.
+/// The derived order (I1 < I2 < I3 < σ0 < σ1 < σ2 < params < I4 < I5 <
+/// sign(I4)) is the order the canonical printer uses inside products. The
+/// fibre symbols come last so that adding them left every isotropic
+/// energy's canonical form unchanged.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Sym {
     /// I1 = tr S = Σ σi.
@@ -32,6 +34,15 @@ pub enum Sym {
     Sigma(u8),
     /// Parameter number k of the energy (printed by name).
     Param(u16),
+    /// I4 = aᵀ S a, the fibre invariant through the polar stretch S
+    /// (`ecc_runtime::fibre`); only in a fibre part ψ(I4, I5).
+    I4,
+    /// I5 = ‖F a‖² = aᵀ C a; only in a fibre part ψ(I4, I5).
+    I5,
+    /// sign(I4): +1 for I4 > 0, −1 otherwise (HOBAK's convention). A leaf
+    /// whose derivative is 0 everywhere: it is piecewise constant, and ψ
+    /// jumps where it switches (anisotropic ARAP's published energy does).
+    SignI4,
 }
 
 /// One node of the DAG. Constructed only through [`Graph`](super::Graph), whose

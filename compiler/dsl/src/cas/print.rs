@@ -52,6 +52,9 @@ impl Graph {
             Sym::I2 => "I2".into(),
             Sym::I3 => "I3".into(),
             Sym::Sigma(k) => format!("s{}", k + 1),
+            Sym::I4 => "I4".into(),
+            Sym::I5 => "I5".into(),
+            Sym::SignI4 => "sign(I4)".into(),
             Sym::Param(k) => self
                 .param_names()
                 .get(k as usize)

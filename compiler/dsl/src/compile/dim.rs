@@ -268,6 +268,7 @@ fn finish(g: &Graph, dim: u8, p: Parts, flags: Flags) -> DimIr {
         decoupled: p.decoupled,
         isotropy_numeric_only: flags.isotropy_numeric_only,
         singularities,
+        fibre: None,
         domain,
     }
 }

@@ -5,6 +5,7 @@ mod cost;
 mod derivs;
 mod dim;
 mod domain;
+mod fibre;
 
 pub use checks::Rng;
 pub use cost::{cost, cost_many};
@@ -68,7 +69,25 @@ fn with_lowering_errors(prog: &sema::Program, mut errors: Vec<Error>, dims: &[u8
 }
 
 fn dim_of(prog: &sema::Program, dim: u8) -> Result<DimIr, Vec<Error>> {
-    let (g, psi, mut guards) = lower::lower_with_domain(prog, dim)?;
+    let (mut g, psi, guards) = lower::lower_with_domain(prog, dim)?;
+    let Some((direction, _)) = &prog.fiber else {
+        return iso_dim(prog, dim, g, psi, guards);
+    };
+    let parts = fibre::split(&mut g, psi, guards, prog)?;
+    let fib = fibre::build(&mut g, parts.fibre, parts.fibre_guards, direction);
+    let mut ir = iso_dim(prog, dim, g, parts.iso, parts.iso_guards)?;
+    ir.fibre = Some(fib);
+    Ok(ir)
+}
+
+/// The isotropic part's [`DimIr`] (all of Ψ without a fibre).
+fn iso_dim(
+    prog: &sema::Program,
+    dim: u8,
+    g: crate::cas::Graph,
+    psi: crate::cas::Id,
+    mut guards: Vec<crate::ir::DomainGuard>,
+) -> Result<DimIr, Vec<Error>> {
     domain::mark_enforced(&g, psi, &mut guards);
     let params: Vec<f64> = prog.params.iter().map(|p| p.default).collect();
     let input = dim::DimInput {

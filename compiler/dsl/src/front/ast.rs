@@ -85,6 +85,15 @@ pub enum Stmt {
         /// The whole statement.
         span: Span,
     },
+    /// `fiber a` / `fibre a`: the per-element fibre direction.
+    Fiber {
+        /// The direction's name.
+        name: String,
+        /// The name's span.
+        name_span: Span,
+        /// The whole statement.
+        span: Span,
+    },
     /// `psi = expr`, or a bare expression (`bare`).
     Psi {
         /// The energy.

@@ -18,7 +18,7 @@
 //! `x ≠ 0` is split over products and positive powers
 //! (x·y ≠ 0 ⇔ x ≠ 0 ∧ y ≠ 0, y^k ≠ 0 ⇔ y ≠ 0). A condition is dropped only
 //! when [`sign`] proves it for every real input (a positive constant,
-//! `exp(..) > 0`, `I2 ≥ 0`, sums and products of such, even powers ≥ 0);
+//! `exp(..) > 0`, `I2 ≥ 0`, `I5 ≥ 0`, sums and products of such, even powers ≥ 0);
 //! conditions on the same argument are merged (x ≥ 0 ∧ x ≠ 0 is x > 0).
 
 use num_traits::{Signed, Zero};
@@ -54,7 +54,8 @@ fn sign_in(g: &Graph, x: Id, budget: &mut usize) -> Sign {
     match g.get(x) {
         Node::Num(r) if r.is_positive() => Sign::Positive,
         Node::Num(r) if r.is_zero() => Sign::NonNegative,
-        Node::Sym(Sym::I2) => Sign::NonNegative,
+        // I2 = ‖F‖², I5 = ‖F a‖².
+        Node::Sym(Sym::I2 | Sym::I5) => Sign::NonNegative,
         Node::Exp(_) => Sign::Positive,
         Node::Add(c) => combine(g, c, budget, |a| a.contains(&Sign::Positive)),
         Node::Mul(c) => combine(g, c, budget, |a| a.iter().all(|s| *s == Sign::Positive)),

@@ -190,6 +190,15 @@ impl Cx<'_> {
                         self.g.sqrt(v)
                     }
                     Func::Exp => self.g.exp(v),
+                    // Sema resolves `sign(I4)` to `Var::SignI4` and refuses
+                    // every other argument, so no `Sign` call reaches here.
+                    Func::Sign => {
+                        let i4 = self.g.sym(Sym::I4);
+                        if v != i4 {
+                            return None;
+                        }
+                        self.g.sym(Sym::SignI4)
+                    }
                     Func::Log | Func::Pow => {
                         if self.g.is_int(v, 0) {
                             let dim = self.tag(x);
@@ -272,6 +281,9 @@ fn var(g: &mut Graph, v: Var, dim: u8) -> Option<Id> {
         Var::S(k) if k < dim => g.sym(Sym::Sigma(k)),
         Var::S(_) => return None,
         Var::D => g.int(dim as i64),
+        Var::I4 => g.sym(Sym::I4),
+        Var::I5 => g.sym(Sym::I5),
+        Var::SignI4 => g.sym(Sym::SignI4),
         Var::IIIC => {
             let i3 = g.sym(Sym::I3);
             g.powi(i3, 2)

@@ -2,6 +2,7 @@
 
 pub mod ast;
 pub mod domain;
+pub mod fibre;
 pub mod lower;
 pub mod parse;
 pub mod resolved;

@@ -298,6 +298,15 @@ impl Builder {
                     span,
                 }
             }
+            Rule::fiber_stmt => {
+                let _kw = next()?;
+                let name = next()?;
+                Stmt::Fiber {
+                    name: name.as_str().to_string(),
+                    name_span: self.span(&name),
+                    span,
+                }
+            }
             Rule::param_stmt | Rule::let_stmt => {
                 let _kw = next()?;
                 let name = next()?;
@@ -335,68 +344,9 @@ impl Builder {
     fn expr(&self, p: Pair<Rule>) -> Result<Expr, Error> {
         let span = self.span(&p);
         match p.as_rule() {
-            Rule::expr | Rule::term => {
-                let mut inner = p.into_inner();
-                let first = match inner.next() {
-                    Some(f) => self.expr(f)?,
-                    None => {
-                        return Err(Error::Syntax {
-                            span,
-                            message: "empty expression".into(),
-                        });
-                    }
-                };
-                let mut rest = Vec::new();
-                while let (Some(op), Some(rhs)) = (inner.next(), inner.next()) {
-                    let bop = match op.as_str() {
-                        "+" => BinOp::Add,
-                        "-" => BinOp::Sub,
-                        "*" => BinOp::Mul,
-                        _ => BinOp::Div,
-                    };
-                    rest.push((bop, self.span(&op), self.expr(rhs)?));
-                }
-                Ok(if rest.is_empty() {
-                    first
-                } else {
-                    Expr::Chain(Box::new(first), rest, span)
-                })
-            }
-            Rule::unary => {
-                let mut negative = false;
-                let mut body = None;
-                for q in p.into_inner() {
-                    match q.as_rule() {
-                        Rule::sign => negative ^= q.as_str() == "-",
-                        _ => body = Some(self.expr(q)?),
-                    }
-                }
-                let body = body.ok_or(Error::Syntax {
-                    span,
-                    message: "expected an expression".into(),
-                })?;
-                Ok(if negative {
-                    Expr::Neg(Box::new(body), span)
-                } else {
-                    body
-                })
-            }
-            Rule::power => {
-                let mut inner = p.into_inner();
-                let base = match inner.next() {
-                    Some(b) => self.expr(b)?,
-                    None => {
-                        return Err(Error::Syntax {
-                            span,
-                            message: "expected an expression".into(),
-                        });
-                    }
-                };
-                Ok(match inner.next() {
-                    Some(e) => Expr::Pow(Box::new(base), Box::new(self.expr(e)?), span),
-                    None => base,
-                })
-            }
+            Rule::expr | Rule::term => self.chain(p, span),
+            Rule::unary => self.unary(p, span),
+            Rule::power => self.power(p, span),
             Rule::paren => match p.into_inner().next() {
                 Some(e) => self.expr(e),
                 None => Err(Error::Syntax {
@@ -404,20 +354,7 @@ impl Builder {
                     message: "empty parentheses".into(),
                 }),
             },
-            Rule::call => {
-                let mut inner = p.into_inner();
-                let name = inner.next().ok_or(Error::Syntax {
-                    span,
-                    message: "expected a function name".into(),
-                })?;
-                let args = inner.map(|a| self.expr(a)).collect::<Result<Vec<_>, _>>()?;
-                Ok(Expr::Call(
-                    name.as_str().to_string(),
-                    self.span(&name),
-                    args,
-                    span,
-                ))
-            }
+            Rule::call => self.call(p, span),
             Rule::ident => Ok(Expr::Ident(p.as_str().to_string(), span)),
             Rule::number => match rat::parse_decimal(p.as_str()) {
                 Some(r) => fits_f64(&r, p.as_str(), span).map(|()| Expr::Num(r, span)),
@@ -433,6 +370,90 @@ impl Builder {
                 message: "unexpected input".into(),
             }),
         }
+    }
+
+    /// A run of `+ -` (`expr`) or of `* /` (`term`), kept flat.
+    fn chain(&self, p: Pair<Rule>, span: Span) -> Result<Expr, Error> {
+        let mut inner = p.into_inner();
+        let first = match inner.next() {
+            Some(f) => self.expr(f)?,
+            None => {
+                return Err(Error::Syntax {
+                    span,
+                    message: "empty expression".into(),
+                });
+            }
+        };
+        let mut rest = Vec::new();
+        while let (Some(op), Some(rhs)) = (inner.next(), inner.next()) {
+            let bop = match op.as_str() {
+                "+" => BinOp::Add,
+                "-" => BinOp::Sub,
+                "*" => BinOp::Mul,
+                _ => BinOp::Div,
+            };
+            rest.push((bop, self.span(&op), self.expr(rhs)?));
+        }
+        Ok(if rest.is_empty() {
+            first
+        } else {
+            Expr::Chain(Box::new(first), rest, span)
+        })
+    }
+
+    /// Signs in front of a power (`--x` is `x`).
+    fn unary(&self, p: Pair<Rule>, span: Span) -> Result<Expr, Error> {
+        let mut negative = false;
+        let mut body = None;
+        for q in p.into_inner() {
+            match q.as_rule() {
+                Rule::sign => negative ^= q.as_str() == "-",
+                _ => body = Some(self.expr(q)?),
+            }
+        }
+        let body = body.ok_or(Error::Syntax {
+            span,
+            message: "expected an expression".into(),
+        })?;
+        Ok(if negative {
+            Expr::Neg(Box::new(body), span)
+        } else {
+            body
+        })
+    }
+
+    /// `base` or `base ^ exponent`.
+    fn power(&self, p: Pair<Rule>, span: Span) -> Result<Expr, Error> {
+        let mut inner = p.into_inner();
+        let base = match inner.next() {
+            Some(b) => self.expr(b)?,
+            None => {
+                return Err(Error::Syntax {
+                    span,
+                    message: "expected an expression".into(),
+                });
+            }
+        };
+        Ok(match inner.next() {
+            Some(e) => Expr::Pow(Box::new(base), Box::new(self.expr(e)?), span),
+            None => base,
+        })
+    }
+
+    /// `name(args)`.
+    fn call(&self, p: Pair<Rule>, span: Span) -> Result<Expr, Error> {
+        let mut inner = p.into_inner();
+        let name = inner.next().ok_or(Error::Syntax {
+            span,
+            message: "expected a function name".into(),
+        })?;
+        let args = inner.map(|a| self.expr(a)).collect::<Result<Vec<_>, _>>()?;
+        Ok(Expr::Call(
+            name.as_str().to_string(),
+            self.span(&name),
+            args,
+            span,
+        ))
     }
 }
 

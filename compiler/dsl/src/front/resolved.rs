@@ -27,6 +27,12 @@ pub enum Var {
     IIIC,
     /// J = det F = I3.
     J,
+    /// I4 = aᵀ S a (needs `fiber a`).
+    I4,
+    /// I5 = ‖F a‖² = aᵀ C a (needs `fiber a`; also spelt `IVC`).
+    I5,
+    /// sign(I4): +1 for I4 > 0, −1 otherwise; written `sign(I4)`.
+    SignI4,
 }
 
 /// A function of the language.
@@ -40,6 +46,8 @@ pub enum Func {
     Exp,
     /// `pow(a, b)`.
     Pow,
+    /// `sign(I4)` (resolved to [`Var::SignI4`]; no other argument is allowed).
+    Sign,
 }
 
 /// A resolved expression.
@@ -102,6 +110,8 @@ pub struct Program {
     pub dim: Option<(u8, Span)>,
     /// Every use of a stretch: (k, span).
     pub stretch_uses: Vec<(u8, Span)>,
+    /// `fiber a`: the direction's name and the statement's span.
+    pub fiber: Option<(String, Span)>,
 }
 
 /// Whether `e` mentions `d`, directly or through lets.

@@ -14,6 +14,7 @@
 use std::collections::HashMap;
 
 use super::ast::{Expr, Stmt};
+use super::fibre;
 pub use super::resolved::{Func, LetInfo, ParamInfo, Program, RExpr, Var, mentions_d};
 use super::suggest::suggest;
 use crate::cas::{Graph, eval};
@@ -35,24 +36,27 @@ const ALIASES: [(&str, Var); 4] = [
     ("IIIC", Var::IIIC),
     ("J", Var::J),
 ];
-const FUNCS: [(&str, Func, usize); 4] = [
+const FUNCS: [(&str, Func, usize); 5] = [
     ("sqrt", Func::Sqrt, 1),
     ("log", Func::Log, 1),
     ("exp", Func::Exp, 1),
     ("pow", Func::Pow, 2),
+    ("sign", Func::Sign, 1),
 ];
-const KEYWORDS: [&str; 4] = ["psi", "param", "let", "dim"];
+const KEYWORDS: [&str; 6] = ["psi", "param", "let", "dim", "fiber", "fibre"];
 
 #[derive(Clone, Copy)]
 enum Def {
     Param(u16, Span),
     Let(usize, Span),
+    /// The fibre direction's name (`fiber a`).
+    Fiber(Span),
 }
 
 impl Def {
     fn span(self) -> Span {
         match self {
-            Def::Param(_, s) | Def::Let(_, s) => s,
+            Def::Param(_, s) | Def::Let(_, s) | Def::Fiber(s) => s,
         }
     }
 }
@@ -70,6 +74,12 @@ struct Resolver<'a> {
     /// Test mode: unknown identifiers become new parameters.
     free_params: bool,
     params: Vec<ParamInfo>,
+    /// `fiber a`, if declared anywhere (I4, I5 are usable everywhere then).
+    fiber: Option<(String, Span)>,
+    lets: Vec<LetInfo>,
+    /// ψ, its key's span and its expression's span.
+    psi: Option<(RExpr, Span, Span)>,
+    dim: Option<(u8, Span)>,
 }
 
 /// Resolve `stmts`. `failed` are the source texts of statements that did not
@@ -84,6 +94,31 @@ pub fn resolve(
     free_params: bool,
     source: &str,
 ) -> (Program, Vec<Error>) {
+    let all_defs = all_definitions(stmts);
+    let poisoned: Vec<String> = failed.iter().filter_map(|t| declared_name(t)).collect();
+    let mut r = Resolver {
+        poisoned,
+        scope: HashMap::new(),
+        all_defs: &all_defs,
+        errors: Vec::new(),
+        lets_mention_d: Vec::new(),
+        stretch_uses: Vec::new(),
+        constant_of: None,
+        free_params,
+        params: Vec::new(),
+        fiber: fibre::declaration(stmts),
+        lets: Vec::new(),
+        psi: None,
+        dim: None,
+    };
+    for s in stmts {
+        r.statement(s);
+    }
+    r.finish(failed, source)
+}
+
+/// The first definition of every `param`/`let` name (for "defined later").
+fn all_definitions(stmts: &[Stmt]) -> HashMap<String, Span> {
     let mut all_defs: HashMap<String, Span> = HashMap::new();
     for s in stmts {
         if let Stmt::Param {
@@ -96,136 +131,163 @@ pub fn resolve(
             all_defs.entry(name.clone()).or_insert(*name_span);
         }
     }
-    let poisoned: Vec<String> = failed.iter().filter_map(|t| declared_name(t)).collect();
-    let mut r = Resolver {
-        poisoned,
-        scope: HashMap::new(),
-        all_defs: &all_defs,
-        errors: Vec::new(),
-        lets_mention_d: Vec::new(),
-        stretch_uses: Vec::new(),
-        constant_of: None,
-        free_params,
-        params: Vec::new(),
-    };
-    let mut lets: Vec<LetInfo> = Vec::new();
-    let mut psi: Option<(RExpr, Span, Span)> = None;
-    let mut dim: Option<(u8, Span)> = None;
-    for s in stmts {
+    all_defs
+}
+
+impl Resolver<'_> {
+    fn statement(&mut self, s: &Stmt) {
         match s {
             Stmt::Dim {
                 value,
                 value_span,
                 span,
-            } => {
-                if let Some((_, first)) = dim {
-                    r.errors.push(Error::Redefinition {
-                        span: *span,
-                        first,
-                        name: "dim".into(),
-                    });
-                    continue;
-                }
-                match value.as_str() {
-                    "2" => dim = Some((2, *span)),
-                    "3" => dim = Some((3, *span)),
-                    _ => r.errors.push(Error::BadDim {
-                        span: *value_span,
-                        found: value.clone(),
-                    }),
-                }
-            }
+            } => self.dim_stmt(value, *value_span, *span),
             Stmt::Param {
                 name,
                 name_span,
                 expr,
                 span,
-            } => {
-                let ok_name = r.check_new_name(name, *name_span);
-                r.constant_of = Some(name.clone());
-                let e = r.expr(expr);
-                r.constant_of = None;
-                let default = r.constant_value(name, &e, expr.span());
-                if ok_name {
-                    let k = r.params.len() as u16;
-                    r.params.push(ParamInfo {
-                        name: name.clone(),
-                        default: default.unwrap_or(f64::NAN),
-                        span: *span,
-                    });
-                    r.scope.insert(name.clone(), Def::Param(k, *name_span));
-                }
-            }
+            } => self.param_stmt(name, *name_span, expr, *span),
             Stmt::Let {
                 name,
                 name_span,
                 expr,
                 ..
-            } => {
-                let ok_name = r.check_new_name(name, *name_span);
-                let (e, md) = r.expr_tracking_d(expr);
-                if ok_name {
-                    r.scope
-                        .insert(name.clone(), Def::Let(lets.len(), *name_span));
-                    r.lets_mention_d.push(md);
-                    lets.push(LetInfo {
-                        name: name.clone(),
-                        expr: e,
-                        mentions_d: md,
-                    });
-                }
-            }
+            } => self.let_stmt(name, *name_span, expr),
+            Stmt::Fiber {
+                name,
+                name_span,
+                span,
+            } => self.fiber_stmt(name, *name_span, *span),
             Stmt::Psi { expr, key_span, .. } => {
-                let e = r.expr(expr);
-                if let Some((_, first, _)) = &psi {
-                    r.errors.push(Error::Redefinition {
+                let e = self.expr(expr);
+                if let Some((_, first, _)) = &self.psi {
+                    self.errors.push(Error::Redefinition {
                         span: *key_span,
                         first: *first,
                         name: "psi".into(),
                     });
                 } else {
-                    psi = Some((e, *key_span, expr.span()));
+                    self.psi = Some((e, *key_span, expr.span()));
                 }
             }
         }
     }
-    let may_be_psi = failed.iter().any(|t| {
-        let t = t.trim_start();
-        !(t.starts_with("param") || t.starts_with("let") || t.starts_with("dim"))
-    });
-    if psi.is_none() && !may_be_psi {
-        let end = source.trim_end().len();
-        let start = source[..end]
-            .char_indices()
-            .next_back()
-            .map_or(0, |(i, _)| i);
-        r.errors.push(Error::MissingPsi {
-            span: Span::new(start, end),
-        });
+
+    fn dim_stmt(&mut self, value: &str, value_span: Span, span: Span) {
+        if let Some((_, first)) = self.dim {
+            self.errors.push(Error::Redefinition {
+                span,
+                first,
+                name: "dim".into(),
+            });
+            return;
+        }
+        match value {
+            "2" => self.dim = Some((2, span)),
+            "3" => self.dim = Some((3, span)),
+            _ => self.errors.push(Error::BadDim {
+                span: value_span,
+                found: value.to_string(),
+            }),
+        }
     }
-    if let (Some((2, dspan)), false) = (dim, r.stretch_uses.is_empty()) {
-        for (k, span) in &r.stretch_uses {
-            if *k >= 2 {
-                r.errors.push(Error::StretchOutOfDim {
-                    span: *span,
-                    name: format!("s{}", k + 1),
-                    dim: 2,
-                    declared: Some(dspan),
-                });
+
+    fn param_stmt(&mut self, name: &str, name_span: Span, expr: &Expr, span: Span) {
+        let ok_name = self.check_new_name(name, name_span);
+        self.constant_of = Some(name.to_string());
+        let e = self.expr(expr);
+        self.constant_of = None;
+        let default = self.constant_value(name, &e, expr.span());
+        if ok_name {
+            let k = self.params.len() as u16;
+            self.params.push(ParamInfo {
+                name: name.to_string(),
+                default: default.unwrap_or(f64::NAN),
+                span,
+            });
+            self.scope
+                .insert(name.to_string(), Def::Param(k, name_span));
+        }
+    }
+
+    fn let_stmt(&mut self, name: &str, name_span: Span, expr: &Expr) {
+        let ok_name = self.check_new_name(name, name_span);
+        let (e, md) = self.expr_tracking_d(expr);
+        if ok_name {
+            self.scope
+                .insert(name.to_string(), Def::Let(self.lets.len(), name_span));
+            self.lets_mention_d.push(md);
+            self.lets.push(LetInfo {
+                name: name.to_string(),
+                expr: e,
+                mentions_d: md,
+            });
+        }
+    }
+
+    /// `fiber a`: only the first one counts ([`fibre::declaration`]); a
+    /// second is a redefinition, and the name must be free.
+    fn fiber_stmt(&mut self, name: &str, name_span: Span, span: Span) {
+        match &self.fiber {
+            Some((_, first)) if *first != span => self.errors.push(Error::Redefinition {
+                span,
+                first: *first,
+                name: "fiber".into(),
+            }),
+            _ => {
+                if self.check_new_name(name, name_span) {
+                    self.scope.insert(name.to_string(), Def::Fiber(name_span));
+                }
             }
         }
     }
-    r.errors.sort_by_key(|e| e.span().start);
-    let (psi, _, psi_span) = psi.unwrap_or((RExpr::Poison, Span::default(), Span::default()));
-    let prog = Program {
-        params: r.params,
-        lets,
-        psi,
-        psi_span,
-        dim,
-        stretch_uses: r.stretch_uses,
-    };
-    (prog, r.errors)
+
+    /// Missing psi, stretches beyond a declared `dim 2`, and the program.
+    fn finish(mut self, failed: &[&str], source: &str) -> (Program, Vec<Error>) {
+        let may_be_psi = failed.iter().any(|t| {
+            let t = t.trim_start();
+            !["param", "let", "dim", "fiber", "fibre"]
+                .iter()
+                .any(|kw| t.starts_with(kw))
+        });
+        if self.psi.is_none() && !may_be_psi {
+            let end = source.trim_end().len();
+            let start = source[..end]
+                .char_indices()
+                .next_back()
+                .map_or(0, |(i, _)| i);
+            self.errors.push(Error::MissingPsi {
+                span: Span::new(start, end),
+            });
+        }
+        if let Some((2, dspan)) = self.dim {
+            for (k, span) in &self.stretch_uses {
+                if *k >= 2 {
+                    self.errors.push(Error::StretchOutOfDim {
+                        span: *span,
+                        name: format!("s{}", k + 1),
+                        dim: 2,
+                        declared: Some(dspan),
+                    });
+                }
+            }
+        }
+        self.errors.sort_by_key(|e| e.span().start);
+        let (psi, _, psi_span) =
+            self.psi
+                .unwrap_or((RExpr::Poison, Span::default(), Span::default()));
+        let prog = Program {
+            params: self.params,
+            lets: self.lets,
+            psi,
+            psi_span,
+            dim: self.dim,
+            stretch_uses: self.stretch_uses,
+            fiber: self.fiber,
+        };
+        (prog, self.errors)
+    }
 }
 
 /// `name` in a statement text starting with `param name` or `let name`.
@@ -246,7 +308,8 @@ fn declared_name(text: &str) -> Option<String> {
 impl Resolver<'_> {
     /// Check that `name` may be defined here; records the error if not.
     fn check_new_name(&mut self, name: &str, span: Span) -> bool {
-        let what = if BUILTINS.iter().any(|(n, _)| *n == name) {
+        let builtin = BUILTINS.iter().chain(fibre::VARS.iter());
+        let what = if builtin.clone().any(|(n, _)| *n == name) {
             Some("a built-in variable")
         } else if FUNCS.iter().any(|(n, ..)| *n == name) {
             Some("a function")
@@ -323,6 +386,12 @@ impl Resolver<'_> {
                 let mut it = args_r.into_iter();
                 match (f, it.next(), it.next()) {
                     (Func::Pow, Some(a), Some(b)) => RExpr::Pow(Box::new(a), Box::new(b), *span),
+                    (Func::Sign, Some(a), _) => {
+                        fibre::sign_of(a, args[0].span()).unwrap_or_else(|e| {
+                            self.errors.push(e);
+                            RExpr::Poison
+                        })
+                    }
                     (f, Some(a), _) => RExpr::Call(*f, Box::new(a), args[0].span()),
                     _ => RExpr::Poison,
                 }
@@ -336,6 +405,7 @@ impl Resolver<'_> {
                 .iter()
                 .chain(ALIASES.iter())
                 .any(|(n, _)| *n == name)
+                || fibre::is_fibre_name(name)
                 || self.scope.contains_key(name))
         {
             self.errors.push(Error::ParamNotConstant {
@@ -351,14 +421,29 @@ impl Resolver<'_> {
             }
             return RExpr::Var(*v);
         }
+        if let Some((_, v)) = fibre::VARS.iter().find(|(n, _)| *n == name) {
+            return self.fibre_var(name, *v, span);
+        }
         if let Some(def) = self.scope.get(name) {
             return match def {
                 Def::Param(k, _) => RExpr::Param(*k),
                 Def::Let(k, _) => RExpr::Let(*k),
+                Def::Fiber(_) => {
+                    let decl = self.fiber.as_ref().map_or(span, |(_, s)| *s);
+                    self.errors.push(fibre::direction_used(name, span, decl));
+                    RExpr::Poison
+                }
             };
         }
         if let Some((_, v)) = ALIASES.iter().find(|(n, _)| *n == name) {
             return RExpr::Var(*v);
+        }
+        if let Some((_, v)) = fibre::ALIASES.iter().find(|(n, _)| *n == name) {
+            return self.fibre_var(name, *v, span);
+        }
+        if name == fibre::C2 {
+            self.errors.push(fibre::c_squared(span));
+            return RExpr::Poison;
         }
         if self.poisoned.iter().any(|p| p == name) {
             return RExpr::Poison;
@@ -376,6 +461,7 @@ impl Resolver<'_> {
         let known: Vec<&str> = BUILTINS
             .iter()
             .chain(ALIASES.iter())
+            .chain(fibre::VARS.iter().filter(|_| self.fiber.is_some()))
             .map(|(n, _)| *n)
             .chain(self.scope.keys().map(|s| s.as_str()))
             .chain(self.all_defs.keys().map(|s| s.as_str()))
@@ -415,6 +501,16 @@ impl Resolver<'_> {
             });
         }
         RExpr::Poison
+    }
+
+    /// A fibre variable: itself after `fiber a`, else a located error.
+    fn fibre_var(&mut self, name: &str, v: Var, span: Span) -> RExpr {
+        if self.fiber.is_some() {
+            RExpr::Var(v)
+        } else {
+            self.errors.push(fibre::undeclared(name, span));
+            RExpr::Poison
+        }
     }
 
     /// Evaluate a parameter default; records non-finite / division-by-zero errors.

@@ -72,12 +72,14 @@ pub(crate) fn next_line_starts_keyword(bytes: &[u8], mut i: usize) -> bool {
         i += 1;
     }
     let rest = &bytes[i..];
-    ["param", "let", "psi", "dim"].iter().any(|kw| {
-        rest.starts_with(kw.as_bytes())
-            && rest
-                .get(kw.len())
-                .is_none_or(|c| !(c.is_ascii_alphanumeric() || *c == b'_'))
-    })
+    ["param", "let", "psi", "dim", "fiber", "fibre"]
+        .iter()
+        .any(|kw| {
+            rest.starts_with(kw.as_bytes())
+                && rest
+                    .get(kw.len())
+                    .is_none_or(|c| !(c.is_ascii_alphanumeric() || *c == b'_'))
+        })
 }
 
 /// Whether the next non-blank, non-comment line starts with a binary operator.

@@ -187,6 +187,8 @@ impl Converter {
             Node::Sym(Sym::Sigma(k)) if *k < self.dim => RatFun::poly(Poly::var(*k as usize)),
             Node::Sym(Sym::Sigma(_)) => return Ok(None),
             Node::Sym(Sym::Param(k)) => RatFun::poly(Poly::var(3 + *k as usize)),
+            // Fibre parts are never converted to σ (they are not functions of σ).
+            Node::Sym(Sym::I4 | Sym::I5 | Sym::SignI4) => return Ok(None),
             Node::Sym(inv) => {
                 let n = self.dim as usize;
                 let s = |k: usize| Poly::var(k);

@@ -174,6 +174,11 @@ impl Lowerer<'_> {
                 Sym::I1 => 3,
                 Sym::I2 => 4,
                 Sym::I3 => 5,
+                // A fibre part ψ(I4, I5) has no σ: its tape reads I4, I5 and
+                // sign(I4) from the σ input registers (`crate::fibre`).
+                Sym::I4 => 0,
+                Sym::I5 => 1,
+                Sym::SignI4 => 2,
                 Sym::Param(k) => {
                     self.n_params = self.n_params.max(usize::from(k) + 1);
                     self.emit(&[], |dst| Op::Param {
