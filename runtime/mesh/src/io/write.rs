@@ -10,6 +10,7 @@ use std::path::Path;
 use super::atomic::write_atomic;
 use crate::error::{MeshError, ValidationError};
 use crate::types::{TetMesh, TriMesh};
+use crate::validate::check_all_finite;
 
 /// One named point-data array: `(name, values, components)`, with
 /// `values.len() == vertex_count · components`, stored vertex-major.
@@ -30,17 +31,7 @@ fn check_elements<const K: usize>(
             .into());
         }
     }
-    if let Some((vertex, p)) = positions
-        .iter()
-        .enumerate()
-        .find(|(_, p)| p.iter().any(|c| !c.is_finite()))
-    {
-        return Err(ValidationError::NonFiniteCoordinate {
-            vertex,
-            position: *p,
-        }
-        .into());
-    }
+    check_all_finite(positions)?;
     Ok(())
 }
 

@@ -30,7 +30,7 @@ use crate::error::{TutteError, ValidationError};
 use crate::geometry::{norm, signed_area_uv, sub};
 use crate::topology::{boundary_loops, components};
 use crate::types::{TriMesh, TutteWeights};
-use crate::validate::check_indices;
+use crate::validate::{check_all_finite, check_indices, referenced};
 
 /// The result of [`tutte_embedding_report`].
 #[derive(Clone, Debug, PartialEq)]
@@ -75,26 +75,10 @@ pub fn tutte_embedding_report(
         return Err(ValidationError::NoElements.into());
     }
     check_indices(tris, n)?;
-    let mut used = vec![false; n];
-    for t in tris {
-        for &v in t {
-            used[v] = true;
-        }
-    }
-    if let Some(vertex) = used.iter().position(|u| !u) {
+    if let Some(vertex) = referenced(tris, n).iter().position(|u| !u) {
         return Err(TutteError::UnreferencedVertex { vertex });
     }
-    if let Some((vertex, p)) = pos
-        .iter()
-        .enumerate()
-        .find(|(_, p)| p.iter().any(|c| !c.is_finite()))
-    {
-        return Err(ValidationError::NonFiniteCoordinate {
-            vertex,
-            position: *p,
-        }
-        .into());
-    }
+    check_all_finite(pos)?;
     let count = components(tris).count;
     if count > 1 {
         return Err(TutteError::Disconnected { count });

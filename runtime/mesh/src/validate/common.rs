@@ -69,8 +69,21 @@ pub(crate) fn referenced<const K: usize>(elements: &[[usize; K]], n: usize) -> V
 
 /// Finite coordinates for every referenced vertex.
 pub(crate) fn check_finite(positions: &[[f64; 3]], used: &[bool]) -> Result<(), ValidationError> {
-    for (vertex, (p, &u)) in positions.iter().zip(used).enumerate() {
-        if u && p.iter().any(|c| !c.is_finite()) {
+    check_finite_where(positions, |v| used.get(v).copied().unwrap_or(false))
+}
+
+/// Finite coordinates for every vertex (writers, the Tutte embedding).
+pub(crate) fn check_all_finite(positions: &[[f64; 3]]) -> Result<(), ValidationError> {
+    check_finite_where(positions, |_| true)
+}
+
+/// The first vertex `v` with `checked(v)` and a non-finite coordinate.
+fn check_finite_where(
+    positions: &[[f64; 3]],
+    checked: impl Fn(usize) -> bool,
+) -> Result<(), ValidationError> {
+    for (vertex, p) in positions.iter().enumerate() {
+        if checked(vertex) && p.iter().any(|c| !c.is_finite()) {
             return Err(ValidationError::NonFiniteCoordinate {
                 vertex,
                 position: *p,

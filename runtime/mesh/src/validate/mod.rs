@@ -48,7 +48,7 @@ use crate::topology::{components, sorted_sides};
 use crate::types::{TetMesh, TriMesh, Validated, ValidationOptions};
 use common::*;
 
-pub(crate) use common::check_indices;
+pub(crate) use common::{check_all_finite, check_indices, referenced};
 
 fn check_components<const K: usize>(
     elements: &[[usize; K]],
