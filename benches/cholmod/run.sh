@@ -25,16 +25,19 @@ matrices=("$@")
 mkdir -p "$out"
 
 cd "$root"
-cargo build --release -q -p ecc-benches --features metis --bin export_hessians --bin factor_bench
+# BIN_DIR=…: use export_hessians/factor_bench already built there (e.g. from a clean worktree)
+if [ -z "${BIN_DIR:-}" ]; then
+  cargo build --release -q -p ecc-benches --features metis --bin export_hessians --bin factor_bench
+fi
+bin=${BIN_DIR:-$root/target/release}
 make -s -C benches/cholmod OUT="$out"
-bin=$root/target/release
 
 for m in "${matrices[@]}"; do
   [ -f "$out/$m.mtx" ] || "$bin/export_hessians" --out "$out" "$m" >> "$out/export.jsonl"
 done
 
 runs=$out/runs.jsonl
-commit=$(git rev-parse --short HEAD)
+commit=${COMMIT:-$(git rev-parse --short HEAD)}  # COMMIT=…: the sources BIN_DIR was built from
 for ((r = 1; r <= rounds; r++)); do
   for m in "${matrices[@]}"; do
     f=$out/$m.mtx

@@ -18,7 +18,7 @@ def name(path):
     return os.path.splitext(os.path.basename(path))[0]
 
 
-def load(path):
+def read_runs(path):
     best = defaultdict(lambda: float("inf"))
     info, loads = {}, defaultdict(list)
     with open(path) as f:
@@ -40,7 +40,7 @@ def fmt_t(t):
 
 
 def main():
-    best, info, loads = load(sys.argv[1])
+    best, info, loads = read_runs(sys.argv[1])
     elements = {}
     if len(sys.argv) > 2 and os.path.exists(sys.argv[2]):
         with open(sys.argv[2]) as f:
@@ -48,13 +48,16 @@ def main():
                 r = json.loads(line)
                 elements[r["matrix"]] = r["elements"]
     order = ["metis", "amd", "block-amd"]
-    policies = sorted({k[3] for k in best if k[1] == "ecc-faer"})
+    known = ["sequential", "parallel", "auto", "split"]
+    found = {k[3] for k in best if k[1] == "ecc-faer"}
+    policies = [p for p in known if p in found] + sorted(found - set(known))
     print("| matrix | n | nnz(A) | ordering | nnz(L) CHOLMOD / ecc | flops CHOLMOD / ecc "
           "| CHOLMOD 1T s | CHOLMOD 2T s | " + " | ".join(f"ecc {p} s" for p in policies)
-          + " | ecc best / CHOLMOD METIS 2T | load |")
-    print("|" + "---|" * (10 + len(policies)))
+          + " | ecc best / CHOLMOD METIS 2T | ecc best / CHOLMOD best | load |")
+    print("|" + "---|" * (11 + len(policies)))
     for m in sorted({k[0] for k in best}, key=lambda m: info.get((m, "ecc-faer", "amd"), {}).get("n", 0)):
         ref = best[(m, "cholmod", "metis", "2")]
+        cbest = min(t for k, t in best.items() if k[0] == m and k[1] == "cholmod")
         first = True
         for o in order:
             c, e = info.get((m, "cholmod", o)), info.get((m, "ecc-faer", o))
@@ -67,13 +70,14 @@ def main():
             fl += f" / {e['flops']:.3g}" if e else " / —"
             ecc = [best[(m, "ecc-faer", o, p)] for p in policies]
             ratio = min(ecc) / ref if e and ref < float("inf") else float("nan")
+            ratio_best = min(ecc) / cbest if e else float("nan")
             ls = loads.get(m, [])
             load = f"{min(ls):.1f}–{max(ls):.1f}" if ls and first else ""
             label = f"{m} ({elements[m]} el.)" if first and m in elements else (m if first else "")
             cols = [label, str(any_r["n"]) if first else "", str(any_r["nnz_a"]) if first else "",
                     o, nnzl, fl, fmt_t(best[(m, "cholmod", o, "1")]),
                     fmt_t(best[(m, "cholmod", o, "2")])] + [fmt_t(t) for t in ecc]
-            cols += ["—" if ratio != ratio else f"{ratio:.2f}", load]
+            cols += ["—" if x != x else f"{x:.2f}" for x in (ratio, ratio_best)] + [load]
             print("| " + " | ".join(cols) + " |")
             first = False
 
