@@ -48,8 +48,20 @@ fn solve_ratio(
     Some(trace(r, problem, a)?.time_to(tol)? / trace(r, problem, b)?.time_to(tol)?)
 }
 
+/// The headline bullets: per-element speed-ups, accuracy, the
+/// parameterisation solves and the largest scaling runs.
 fn headline(r: &Results, out: &mut String) {
     let _ = writeln!(out, "## Headline numbers\n");
+    per_element_headline(r, out);
+    accuracy_headline(r, out);
+    solve_headline(r, out);
+    scaling_headline(r, out);
+    let _ = writeln!(out);
+}
+
+/// Per dimension: geometric-mean speed-up of the analytic projected Hessian
+/// over the numeric projections, and the interpreted energy's cost.
+fn per_element_headline(r: &Results, out: &mut String) {
     for d in [3, 2] {
         let (ne, nf) = (d * (d + 1), d * d);
         let range = |m: Method| {
@@ -78,6 +90,10 @@ fn headline(r: &Results, out: &mut String) {
             );
         }
     }
+}
+
+/// The worst relative Hessian error of each method over 2D and 3D.
+fn accuracy_headline(r: &Results, out: &mut String) {
     let errs: Vec<String> = [
         Method::Analytic,
         Method::NumericF,
@@ -104,6 +120,10 @@ fn headline(r: &Results, out: &mut String) {
             errs.join(", ")
         );
     }
+}
+
+/// Time to ‖∇E‖∞ ≤ 1e-4 of every method on each parameterisation problem.
+fn solve_headline(r: &Results, out: &mut String) {
     for p in r.problems.iter().filter(|p| p.name.contains("(SD)")) {
         let t = |m| trace(r, &p.name, m).and_then(|t| t.time_to(1e-4));
         let _ = writeln!(
@@ -129,6 +149,10 @@ fn headline(r: &Results, out: &mut String) {
                 .map_or(String::new(), |x| format!(" Autodiff/analytic: {x:.2}×."))
         );
     }
+}
+
+/// Seconds per iteration at the largest size of each (mesh, solver).
+fn scaling_headline(r: &Results, out: &mut String) {
     let big = |mesh: &str, solver: &str| {
         r.scaling
             .iter()
@@ -149,9 +173,10 @@ fn headline(r: &Results, out: &mut String) {
     if !parts.is_empty() {
         let _ = writeln!(out, "* **Scaling** (largest sizes): {}.", parts.join("; "));
     }
-    let _ = writeln!(out);
 }
 
+/// Section 1: per-element time and accuracy tables, the reference's own
+/// error, and the trade-off figures.
 fn element_section(r: &Results, out: &mut String) {
     let _ = writeln!(
         out,
@@ -162,40 +187,7 @@ fn element_section(r: &Results, out: &mut String) {
         r.timing.batch, r.timing.rounds
     );
     for d in [2, 3] {
-        let energies: Vec<&str> = {
-            let mut v: Vec<&str> = r
-                .timing
-                .rows
-                .iter()
-                .filter(|x| x.dim == d)
-                .map(|x| x.energy.as_str())
-                .collect();
-            v.dedup();
-            v
-        };
-        if energies.is_empty() {
-            continue;
-        }
-        let _ = writeln!(out, "### {d}D time per element\n");
-        let mut cols = vec!["energy".to_string()];
-        cols.extend(Method::ALL.iter().map(|m| m.label(d)));
-        header(out, &cols);
-        for en in energies {
-            let mut row = vec![en.to_string()];
-            for m in Method::ALL {
-                let cell = r
-                    .timing
-                    .rows
-                    .iter()
-                    .find(|x| x.dim == d && x.energy == en && x.method == m)
-                    .map_or("—".into(), |x| {
-                        format!("{:.0} ns ({:.2}×)", x.ns, x.ratio)
-                    });
-                row.push(cell);
-            }
-            let _ = writeln!(out, "| {} |", row.join(" | "));
-        }
-        let _ = writeln!(out);
+        timing_table(r, out, d);
     }
     let _ = writeln!(
         out,
@@ -210,68 +202,128 @@ fn element_section(r: &Results, out: &mut String) {
         if !r.accuracy.rows.iter().any(|x| x.dim == d) {
             continue;
         }
-        let _ = writeln!(out, "#### {d}D, worst over energies, by case class\n");
-        let mut cols = vec!["case".to_string()];
-        cols.extend(Method::ALL.iter().map(|m| m.label(d)));
-        header(out, &cols);
-        for c in CLASSES {
-            let rows: Vec<_> = r
-                .accuracy
-                .rows
-                .iter()
-                .filter(|x| x.dim == d && x.class == c.name && x.samples > 0)
-                .collect();
-            if rows.is_empty() {
-                continue;
-            }
-            let mut row = vec![c.name.to_string()];
-            for m in Method::ALL {
-                let w = rows
-                    .iter()
-                    .filter(|x| x.method == m)
-                    .map(|x| x.hess_err)
-                    .reduce(f64::max);
-                row.push(w.map_or("—".into(), e));
-            }
-            let _ = writeln!(out, "| {} |", row.join(" | "));
-        }
-        let _ = writeln!(
-            out,
-            "\n#### {d}D, worst over case classes, by energy (Hessian / gradient)\n"
-        );
-        header(
-            out,
-            &cols
-                .iter()
-                .enumerate()
-                .map(|(i, c)| if i == 0 { "energy".into() } else { c.clone() })
-                .collect::<Vec<_>>(),
-        );
-        let mut energies: Vec<&str> = r
-            .accuracy
+        let cols = accuracy_by_class(r, out, d);
+        accuracy_by_energy(r, out, d, &cols);
+    }
+    reference_error(r, out);
+    let _ = writeln!(
+        out,
+        "![2D trade-off](element_tradeoff_2d.png)\n\n![3D trade-off](element_tradeoff_3d.png)\n"
+    );
+}
+
+/// The time-per-element table of dimension `d` (nothing when it has no rows).
+fn timing_table(r: &Results, out: &mut String, d: usize) {
+    let energies: Vec<&str> = {
+        let mut v: Vec<&str> = r
+            .timing
             .rows
             .iter()
             .filter(|x| x.dim == d)
             .map(|x| x.energy.as_str())
             .collect();
-        energies.dedup();
-        for en in energies {
-            let mut row = vec![en.to_string()];
-            for m in Method::ALL {
-                let rows = r
-                    .accuracy
-                    .rows
-                    .iter()
-                    .filter(|x| x.dim == d && x.energy == en && x.method == m && x.samples > 0);
-                let (h, g) = rows.fold((0.0f64, 0.0f64), |a, x| {
-                    (a.0.max(x.hess_err), a.1.max(x.grad_err))
-                });
-                row.push(format!("{} / {}", e(h), e(g)));
-            }
-            let _ = writeln!(out, "| {} |", row.join(" | "));
-        }
-        let _ = writeln!(out);
+        v.dedup();
+        v
+    };
+    if energies.is_empty() {
+        return;
     }
+    let _ = writeln!(out, "### {d}D time per element\n");
+    let mut cols = vec!["energy".to_string()];
+    cols.extend(Method::ALL.iter().map(|m| m.label(d)));
+    header(out, &cols);
+    for en in energies {
+        let mut row = vec![en.to_string()];
+        for m in Method::ALL {
+            let cell = r
+                .timing
+                .rows
+                .iter()
+                .find(|x| x.dim == d && x.energy == en && x.method == m)
+                .map_or("—".into(), |x| {
+                    format!("{:.0} ns ({:.2}×)", x.ns, x.ratio)
+                });
+            row.push(cell);
+        }
+        let _ = writeln!(out, "| {} |", row.join(" | "));
+    }
+    let _ = writeln!(out);
+}
+
+/// The worst Hessian error over energies, by case class, in dimension `d`;
+/// returns the table's columns.
+fn accuracy_by_class(r: &Results, out: &mut String, d: usize) -> Vec<String> {
+    let _ = writeln!(out, "#### {d}D, worst over energies, by case class\n");
+    let mut cols = vec!["case".to_string()];
+    cols.extend(Method::ALL.iter().map(|m| m.label(d)));
+    header(out, &cols);
+    for c in CLASSES {
+        let rows: Vec<_> = r
+            .accuracy
+            .rows
+            .iter()
+            .filter(|x| x.dim == d && x.class == c.name && x.samples > 0)
+            .collect();
+        if rows.is_empty() {
+            continue;
+        }
+        let mut row = vec![c.name.to_string()];
+        for m in Method::ALL {
+            let w = rows
+                .iter()
+                .filter(|x| x.method == m)
+                .map(|x| x.hess_err)
+                .reduce(f64::max);
+            row.push(w.map_or("—".into(), e));
+        }
+        let _ = writeln!(out, "| {} |", row.join(" | "));
+    }
+    cols
+}
+
+/// The worst Hessian / gradient error over case classes, by energy, in
+/// dimension `d` (`cols` as in the by-class table).
+fn accuracy_by_energy(r: &Results, out: &mut String, d: usize, cols: &[String]) {
+    let _ = writeln!(
+        out,
+        "\n#### {d}D, worst over case classes, by energy (Hessian / gradient)\n"
+    );
+    header(
+        out,
+        &cols
+            .iter()
+            .enumerate()
+            .map(|(i, c)| if i == 0 { "energy".into() } else { c.clone() })
+            .collect::<Vec<_>>(),
+    );
+    let mut energies: Vec<&str> = r
+        .accuracy
+        .rows
+        .iter()
+        .filter(|x| x.dim == d)
+        .map(|x| x.energy.as_str())
+        .collect();
+    energies.dedup();
+    for en in energies {
+        let mut row = vec![en.to_string()];
+        for m in Method::ALL {
+            let rows = r
+                .accuracy
+                .rows
+                .iter()
+                .filter(|x| x.dim == d && x.energy == en && x.method == m && x.samples > 0);
+            let (h, g) = rows.fold((0.0f64, 0.0f64), |a, x| {
+                (a.0.max(x.hess_err), a.1.max(x.grad_err))
+            });
+            row.push(format!("{} / {}", e(h), e(g)));
+        }
+        let _ = writeln!(out, "| {} |", row.join(" | "));
+    }
+    let _ = writeln!(out);
+}
+
+/// The reference's own error estimate (worst over the accuracy study).
+fn reference_error(r: &Results, out: &mut String) {
     let worst_ref = r
         .accuracy
         .refs
@@ -298,10 +350,6 @@ fn element_section(r: &Results, out: &mut String) {
             " (worst: {}D {} at {})",
             x.dim, x.energy, x.class
         ))
-    );
-    let _ = writeln!(
-        out,
-        "![2D trade-off](element_tradeoff_2d.png)\n\n![3D trade-off](element_tradeoff_3d.png)\n"
     );
 }
 
