@@ -9,6 +9,7 @@
 //!
 //! Run with `cargo run --release -p ecc-benches --bin report -- [--quick] [--out DIR]`.
 
+pub mod cholmod;
 pub mod figures;
 pub mod machine;
 pub mod markdown;
@@ -143,40 +144,6 @@ fn scaling_plan(size: Size) -> ScalingPlan {
     }
 }
 
-/// What the solve study has gathered so far.
-#[derive(Default)]
-struct SolveStudy {
-    problems: Vec<ProblemInfo>,
-    traces: Vec<Trace>,
-}
-
-impl SolveStudy {
-    /// Log and keep a finished solve, or note why it failed.
-    fn record<E: std::fmt::Display>(
-        &mut self,
-        name: &str,
-        m: SolveMethod,
-        result: Result<Trace, E>,
-        log: &mut dyn FnMut(&str),
-        notes: &mut Vec<String>,
-    ) {
-        match result {
-            Ok(t) => {
-                log(&format!(
-                    "  {name} / {}: {} its, |g| {:.1e}, {:.2} s, {}",
-                    m.label(),
-                    t.points.len() - 1,
-                    t.points.last().map_or(f64::NAN, |p| p.grad_inf),
-                    t.seconds_measured,
-                    t.status
-                ));
-                self.traces.push(t);
-            }
-            Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
-        }
-    }
-}
-
 /// Run the solve study; failures become notes.
 fn solves(
     cfg: &Config,
@@ -184,20 +151,8 @@ fn solves(
     notes: &mut Vec<String>,
 ) -> (Vec<ProblemInfo>, Vec<Trace>) {
     let limits = solve_limits(cfg.size);
-    let mut study = SolveStudy::default();
-    param_solves(cfg, &limits, &mut study, log, notes);
-    deform_solves(cfg, &limits, &mut study, log, notes);
-    (study.problems, study.traces)
-}
-
-/// Symmetric Dirichlet parameterisations of the surface meshes, every method.
-fn param_solves(
-    cfg: &Config,
-    limits: &SolveLimits,
-    study: &mut SolveStudy,
-    log: &mut dyn FnMut(&str),
-    notes: &mut Vec<String>,
-) {
+    let mut problems = Vec::new();
+    let mut traces = Vec::new();
     let params: &[(&str, &str)] = if cfg.size == Size::Tiny {
         &[("hand_1_i_f5000 (SD)", "hand_1_i_f5000.obj")]
     } else {
@@ -214,7 +169,7 @@ fn param_solves(
                 continue;
             }
         };
-        study.problems.push(ProblemInfo {
+        problems.push(ProblemInfo {
             name: name.into(),
             file: file.into(),
             energy: "symmetric Dirichlet (sd2.psi)".into(),
@@ -224,20 +179,22 @@ fn param_solves(
         for m in SolveMethod::ALL {
             let e: Arc<dyn ecc_runtime::Energy<2>> =
                 Arc::new(ecc_energies::SymmetricDirichlet2::new());
-            let result = solve::parameterization(name, &mesh, e, m, limits);
-            study.record(name, m, result, log, notes);
+            match solve::parameterization(name, &mesh, e, m, &limits) {
+                Ok(t) => {
+                    log(&format!(
+                        "  {name} / {}: {} its, |g| {:.1e}, {:.2} s, {}",
+                        m.label(),
+                        t.points.len() - 1,
+                        t.points.last().map_or(f64::NAN, |p| p.grad_inf),
+                        t.seconds_measured,
+                        t.status
+                    ));
+                    traces.push(t);
+                }
+                Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
+            }
         }
     }
-}
-
-/// ARAP and stable Neo-Hookean deformations of the hand, every method.
-fn deform_solves(
-    cfg: &Config,
-    limits: &SolveLimits,
-    study: &mut SolveStudy,
-    log: &mut dyn FnMut(&str),
-    notes: &mut Vec<String>,
-) {
     let deform: &[(&str, &str)] = if cfg.size == Size::Tiny {
         &[]
     } else {
@@ -248,7 +205,7 @@ fn deform_solves(
             Err(e) => notes.push(format!("hand.mesh: {e}")),
             Ok(mesh) => {
                 for &(name, which) in deform {
-                    study.problems.push(ProblemInfo {
+                    problems.push(ProblemInfo {
                         name: name.into(),
                         file: "hand.mesh".into(),
                         energy: if which == "arap" {
@@ -265,13 +222,26 @@ fn deform_solves(
                         } else {
                             Arc::new(ecc_energies::StableNeoHookean::new())
                         };
-                        let result = solve::deformation(name, &mesh, e, m, limits);
-                        study.record(name, m, result, log, notes);
+                        match solve::deformation(name, &mesh, e, m, &limits) {
+                            Ok(t) => {
+                                log(&format!(
+                                    "  {name} / {}: {} its, |g| {:.1e}, {:.2} s, {}",
+                                    m.label(),
+                                    t.points.len() - 1,
+                                    t.points.last().map_or(f64::NAN, |p| p.grad_inf),
+                                    t.seconds_measured,
+                                    t.status
+                                ));
+                                traces.push(t);
+                            }
+                            Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
+                        }
                     }
                 }
             }
         }
     }
+    (problems, traces)
 }
 
 /// Run every study at `cfg.size`, then write the folder. `log` receives progress lines.
@@ -353,6 +323,7 @@ pub fn write(results: &Results, out: &Path) -> Result<(), ReportError> {
     })?;
     std::fs::write(&p, json).map_err(|e| io(&p, e))?;
     let p = out.join("BENCHMARKS.md");
-    std::fs::write(&p, markdown::render(results)).map_err(|e| io(&p, e))?;
+    let md = markdown::render(results) + &cholmod::section(out);
+    std::fs::write(&p, md).map_err(|e| io(&p, e))?;
     Ok(())
 }
