@@ -144,6 +144,40 @@ fn scaling_plan(size: Size) -> ScalingPlan {
     }
 }
 
+/// What the solve study has gathered so far.
+#[derive(Default)]
+struct SolveStudy {
+    problems: Vec<ProblemInfo>,
+    traces: Vec<Trace>,
+}
+
+impl SolveStudy {
+    /// Log and keep a finished solve, or note why it failed.
+    fn record<E: std::fmt::Display>(
+        &mut self,
+        name: &str,
+        m: SolveMethod,
+        result: Result<Trace, E>,
+        log: &mut dyn FnMut(&str),
+        notes: &mut Vec<String>,
+    ) {
+        match result {
+            Ok(t) => {
+                log(&format!(
+                    "  {name} / {}: {} its, |g| {:.1e}, {:.2} s, {}",
+                    m.label(),
+                    t.points.len() - 1,
+                    t.points.last().map_or(f64::NAN, |p| p.grad_inf),
+                    t.seconds_measured,
+                    t.status
+                ));
+                self.traces.push(t);
+            }
+            Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
+        }
+    }
+}
+
 /// Run the solve study; failures become notes.
 fn solves(
     cfg: &Config,
@@ -151,8 +185,20 @@ fn solves(
     notes: &mut Vec<String>,
 ) -> (Vec<ProblemInfo>, Vec<Trace>) {
     let limits = solve_limits(cfg.size);
-    let mut problems = Vec::new();
-    let mut traces = Vec::new();
+    let mut study = SolveStudy::default();
+    param_solves(cfg, &limits, &mut study, log, notes);
+    deform_solves(cfg, &limits, &mut study, log, notes);
+    (study.problems, study.traces)
+}
+
+/// Symmetric Dirichlet parameterisations of the surface meshes, every method.
+fn param_solves(
+    cfg: &Config,
+    limits: &SolveLimits,
+    study: &mut SolveStudy,
+    log: &mut dyn FnMut(&str),
+    notes: &mut Vec<String>,
+) {
     let params: &[(&str, &str)] = if cfg.size == Size::Tiny {
         &[("hand_1_i_f5000 (SD)", "hand_1_i_f5000.obj")]
     } else {
@@ -169,7 +215,7 @@ fn solves(
                 continue;
             }
         };
-        problems.push(ProblemInfo {
+        study.problems.push(ProblemInfo {
             name: name.into(),
             file: file.into(),
             energy: "symmetric Dirichlet (sd2.psi)".into(),
@@ -179,22 +225,20 @@ fn solves(
         for m in SolveMethod::ALL {
             let e: Arc<dyn ecc_runtime::Energy<2>> =
                 Arc::new(ecc_energies::SymmetricDirichlet2::new());
-            match solve::parameterization(name, &mesh, e, m, &limits) {
-                Ok(t) => {
-                    log(&format!(
-                        "  {name} / {}: {} its, |g| {:.1e}, {:.2} s, {}",
-                        m.label(),
-                        t.points.len() - 1,
-                        t.points.last().map_or(f64::NAN, |p| p.grad_inf),
-                        t.seconds_measured,
-                        t.status
-                    ));
-                    traces.push(t);
-                }
-                Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
-            }
+            let result = solve::parameterization(name, &mesh, e, m, limits);
+            study.record(name, m, result, log, notes);
         }
     }
+}
+
+/// ARAP and stable Neo-Hookean deformations of the hand, every method.
+fn deform_solves(
+    cfg: &Config,
+    limits: &SolveLimits,
+    study: &mut SolveStudy,
+    log: &mut dyn FnMut(&str),
+    notes: &mut Vec<String>,
+) {
     let deform: &[(&str, &str)] = if cfg.size == Size::Tiny {
         &[]
     } else {
@@ -205,7 +249,7 @@ fn solves(
             Err(e) => notes.push(format!("hand.mesh: {e}")),
             Ok(mesh) => {
                 for &(name, which) in deform {
-                    problems.push(ProblemInfo {
+                    study.problems.push(ProblemInfo {
                         name: name.into(),
                         file: "hand.mesh".into(),
                         energy: if which == "arap" {
@@ -222,26 +266,13 @@ fn solves(
                         } else {
                             Arc::new(ecc_energies::StableNeoHookean::new())
                         };
-                        match solve::deformation(name, &mesh, e, m, &limits) {
-                            Ok(t) => {
-                                log(&format!(
-                                    "  {name} / {}: {} its, |g| {:.1e}, {:.2} s, {}",
-                                    m.label(),
-                                    t.points.len() - 1,
-                                    t.points.last().map_or(f64::NAN, |p| p.grad_inf),
-                                    t.seconds_measured,
-                                    t.status
-                                ));
-                                traces.push(t);
-                            }
-                            Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
-                        }
+                        let result = solve::deformation(name, &mesh, e, m, limits);
+                        study.record(name, m, result, log, notes);
                     }
                 }
             }
         }
     }
-    (problems, traces)
 }
 
 /// Run every study at `cfg.size`, then write the folder. `log` receives progress lines.
