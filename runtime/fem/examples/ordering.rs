@@ -12,6 +12,17 @@
 //! and two (`parallel`; run with RAYON_NUM_THREADS=2), alternating so the
 //! machine's load hits both alike, and the mean time of REPEATS
 //! factorisations under the `auto` policy after its two probes.
+//!
+//! `ordering MESH|disk:RINGS REPEATS --split [ORDERING]` (run with
+//! RAYON_NUM_THREADS=2) compares instead, per factorisation, the plain
+//! sequential factor (ORDERING, default `amd`) on one thread (a 1-thread pool)
+//! and in the 2-thread pool with the two-way split ([`ThreadPolicy::Split`])
+//! in the 2-thread pool, and the split in the 1-thread pool (its halves one
+//! after the other): best of REPEATS, the four alternating. From the last,
+//! the best time of each phase (half 1, half 2, Schur complement + dense
+//! factor) and the projected two-thread time max(half) + dense, which the
+//! load of a shared machine does not distort. Then one solve each (plain
+//! 1T, split 2T) and the largest difference between their solutions.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -79,6 +90,105 @@ fn values(p: &Pattern) -> Vec<f64> {
     v
 }
 
+/// Best of `repeats` of `f` for each closure, alternating.
+fn best_of(repeats: usize, fs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
+    let mut best = vec![f64::INFINITY; fs.len()];
+    for _ in 0..repeats {
+        for (f, b) in fs.iter_mut().zip(&mut best) {
+            let t = Instant::now();
+            f();
+            *b = b.min(t.elapsed().as_secs_f64());
+        }
+    }
+    best
+}
+
+/// The `--split` comparison (see the module docs).
+fn split_row(spec: &str, p: &Pattern, v: &[f64], repeats: usize, ordering: FillOrdering) {
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let seq_params = CholeskyParams {
+        ordering,
+        threads: ThreadPolicy::Sequential,
+    };
+    let t = Instant::now();
+    let mut seq1 = one.install(|| CholeskyFactor::analyze_with(p, seq_params).unwrap());
+    let t_seq = t.elapsed().as_secs_f64();
+    let mut seq2 = CholeskyFactor::analyze_with(p, seq_params).unwrap();
+    let t = Instant::now();
+    let split_params = CholeskyParams {
+        ordering,
+        threads: ThreadPolicy::Split,
+    };
+    let mut split = CholeskyFactor::analyze_with(p, split_params).unwrap();
+    let t_split = t.elapsed().as_secs_f64();
+    let mut split1 = CholeskyFactor::analyze_with(p, split_params).unwrap();
+    let Some((k, critical)) = split.split() else {
+        println!("{spec}: not split (flops {:.3e})", split.factor_flops());
+        return;
+    };
+    // phases of the split run on one thread (halves one after the other):
+    // best of each, for the projected critical path max(half) + dense
+    let mut phases = [f64::INFINITY; 4];
+    let fac = best_of(
+        repeats,
+        &mut [
+            &mut || one.install(|| seq1.factorize(p, v).unwrap()),
+            &mut || seq2.factorize(p, v).unwrap(),
+            &mut || split.factorize(p, v).unwrap(),
+            &mut || {
+                one.install(|| split1.factorize(p, v).unwrap());
+                let ph = split1.split_phases().unwrap();
+                phases.iter_mut().zip(ph).for_each(|(b, t)| *b = b.min(t));
+            },
+        ],
+    );
+    let projected = phases[0].max(phases[1]) + phases[3];
+    let rhs: Vec<f64> = (0..p.n()).map(|i| (0.3 * i as f64).cos()).collect();
+    let (mut x1, mut x2) = (rhs.clone(), rhs.clone());
+    let sol = best_of(
+        repeats,
+        &mut [
+            &mut || {
+                x1.copy_from_slice(&rhs);
+                one.install(|| assert!(seq1.solve_in_place(&mut x1)));
+            },
+            &mut || {
+                x2.copy_from_slice(&rhs);
+                assert!(split.solve_in_place(&mut x2));
+            },
+        ],
+    );
+    let scale = x1.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+    let diff = x1
+        .iter()
+        .zip(&x2)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    println!(
+        "| {spec} | {} | {} | {:.3e} | {:.3e} | {:.3e} | {k} | {t_seq:.3} | {t_split:.3} | {:.4} | {:.4} | {:.4} | {:.2} | {:.4} | {:.4} {:.4} {:.4} | {:.4} | {:.2} | {:.4} | {:.4} | {:.1e} |",
+        p.n(),
+        ordering.name(),
+        seq1.factor_flops(),
+        split.factor_flops(),
+        critical,
+        fac[0],
+        fac[1],
+        fac[2],
+        fac[0] / fac[2],
+        fac[3],
+        phases[0],
+        phases[1],
+        phases[3],
+        projected,
+        fac[0] / projected,
+        sol[0],
+        sol[1],
+        diff / scale,
+    );
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let Some(spec) = args.first() else {
@@ -94,6 +204,14 @@ fn main() {
         }
     };
     let v = values(&p);
+    if let Some(at) = args.iter().position(|a| a == "--split") {
+        let ordering = args
+            .get(at + 1)
+            .and_then(|o| FillOrdering::from_name(o))
+            .unwrap_or(FillOrdering::Amd);
+        split_row(spec, &p, &v, repeats, ordering);
+        return;
+    }
     println!(
         "{spec}: n = {}, nnz(A upper) = {}, rayon threads = {}",
         p.n(),

@@ -25,9 +25,9 @@ use faer::{Conj, MatMut, Par, Side};
 
 use serde::{Deserialize, Serialize};
 
-mod separator;
 mod split;
 mod threads;
+mod tree;
 
 pub use threads::{REPROBE_EVERY, ThreadPolicy};
 
@@ -109,7 +109,7 @@ fn split_for(
         && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
         && flops(symbolic) >= SPLIT_MIN_FLOPS;
     if wanted {
-        SplitFactor::analyse(pattern)
+        SplitFactor::analyse(pattern, symbolic, false)
     } else {
         Ok(None)
     }
@@ -295,6 +295,14 @@ impl CholeskyFactor {
     /// The ordering and thread policy this factor was analysed with.
     pub fn params(&self) -> CholeskyParams {
         self.params
+    }
+
+    /// For a split factor, the seconds of the phases of its last successful
+    /// factorisation: half 1 and half 2 (each on one thread), both halves
+    /// (their `rayon::join`), and the separator's Schur complement and dense
+    /// factor; `None` when the factorisation is not split.
+    pub fn split_phases(&self) -> Option<[f64; 4]> {
+        self.split.as_ref().map(|s| s.phases())
     }
 
     /// Whether the last numeric factorisation (and so the solves) ran on
@@ -588,6 +596,62 @@ mod tests {
                 assert!(!d.is_parallel(), "the default is sequential");
             }
         });
+    }
+
+    #[test]
+    fn the_split_policy_splits_large_factors_on_two_threads_only() {
+        let p = crate::linear::ordering::tests::grid(100, 100, 2);
+        let v = dominant(&p);
+        let xs: Vec<f64> = (0..p.n()).map(|i| (0.01 * i as f64).sin()).collect();
+        let mut b = vec![0.0; p.n()];
+        p.sym_matvec(&v, &xs, &mut b);
+        let params = CholeskyParams {
+            threads: ThreadPolicy::Split,
+            ..Default::default()
+        };
+        let in_pool = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut f = CholeskyFactor::analyze_with(&p, params).unwrap();
+                let mut x = Vec::new();
+                for _ in 0..3 {
+                    f.factorize(&p, &v).unwrap();
+                    x = b.clone();
+                    assert!(f.solve_in_place(&mut x));
+                    let err = x
+                        .iter()
+                        .zip(&xs)
+                        .map(|(a, e)| (a - e).abs())
+                        .fold(0.0, f64::max);
+                    assert!(err < 1e-12, "{threads} threads: {err}");
+                }
+                assert_eq!(f.symbolic_analyses(), 1);
+                (f.split(), f.is_parallel(), x)
+            })
+        };
+        let (split, parallel, _) = in_pool(2);
+        let (k, critical) = split.expect("two threads and large enough: split");
+        assert!(parallel && k > 0);
+        let plain = CholeskyFactor::analyze(&p).unwrap().factor_flops();
+        assert!(
+            plain >= SPLIT_MIN_FLOPS,
+            "the grid must be above the threshold"
+        );
+        assert!(
+            critical < plain,
+            "the critical path is shorter: {critical:e} vs {plain:e}"
+        );
+        let (one, parallel, _) = in_pool(1);
+        assert!(
+            one.is_none() && !parallel,
+            "one thread: the sequential path"
+        );
+        let small = crate::linear::ordering::tests::grid(9, 7, 2);
+        let f = CholeskyFactor::analyze_with(&small, params).unwrap();
+        assert!(f.split().is_none(), "below the threshold: sequential");
     }
 
     #[test]

@@ -209,7 +209,7 @@ impl Supervariables {
 }
 
 /// faer's AMD on the upper-triangular CSC pattern `(cp, ri)` of size `n`.
-pub(crate) fn amd_order(n: usize, cp: &[usize], ri: &[usize]) -> Result<Vec<usize>, FemError> {
+fn amd_order(n: usize, cp: &[usize], ri: &[usize]) -> Result<Vec<usize>, FemError> {
     let a = SymbolicSparseColMatRef::new_checked(n, n, cp, None, ri);
     let mut perm = vec![0usize; n];
     let mut inv = vec![0usize; n];

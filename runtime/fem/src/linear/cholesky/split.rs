@@ -75,9 +75,8 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Accum, Conj, MatMut, MatRef, Par};
 
-use super::separator::{Part, bisect};
+use super::tree::{Part, split};
 use crate::error::FemError;
-use crate::linear::ordering::{Supervariables, amd_order};
 use crate::pattern::Pattern;
 
 /// Separators at least this many unknowns wide factorise Σ on the pool's
@@ -100,6 +99,8 @@ struct Half {
     mem: MemBuffer,
     /// L_SS⁽ⁱ⁾ of (2), k×k column-major (entries outside L's structure stay 0).
     l_ss: Vec<f64>,
+    /// L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ of (3), k×k column-major, lower triangle.
+    product: Vec<f64>,
     /// The solve vector [yᵢ; zᵢ] of (4), then [xᵢ; x_S] of (6).
     work: Vec<f64>,
     /// L_SS⁽ⁱ⁾ zᵢ of (5).
@@ -116,32 +117,6 @@ fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
     v.try_reserve_exact(len).map_err(|_| oom(what))?;
     v.resize(len, 0.0);
     Ok(v)
-}
-
-/// The unknowns of the groups of `part`, the P part in block-AMD order of
-/// its induced vertex graph, S in increasing order.
-fn ordered_unknowns(
-    sv: &Supervariables,
-    parts: &[Part],
-    part: Part,
-) -> Result<Vec<usize>, FemError> {
-    let groups: Vec<usize> = (0..sv.len()).filter(|&g| parts[g] == part).collect();
-    if part == Part::Separator {
-        return Ok(sv.expand(&groups));
-    }
-    let mut local = vec![usize::MAX; sv.len()];
-    groups.iter().enumerate().for_each(|(l, &g)| local[g] = l);
-    let (mut cp, mut ri) = (vec![0usize], Vec::new());
-    for &g in &groups {
-        let nb = &sv.adj[sv.adj_ptr[g]..sv.adj_ptr[g + 1]];
-        // neighbours sorted by group, so by local index: upper part then diagonal
-        ri.extend(nb.iter().map(|&h| local[h]).filter(|&h| h < local[g]));
-        ri.push(local[g]);
-        cp.push(ri.len());
-    }
-    let perm = amd_order(groups.len(), &cp, &ri)?;
-    let order: Vec<usize> = perm.iter().map(|&l| groups[l]).collect();
-    Ok(sv.expand(&order))
 }
 
 /// Upper-triangular CSC pattern of A[unknowns, unknowns] in the local order
@@ -186,17 +161,10 @@ fn supernodal<'a>(
 }
 
 impl Half {
-    /// Pattern and symbolic analysis of Bᵢ for part `part` (storage comes
-    /// later, in [`Half::allocate`], for the chosen bisection only).
-    fn analyse(
-        pattern: &Pattern,
-        sv: &Supervariables,
-        parts: &[Part],
-        part: Part,
-    ) -> Result<Self, FemError> {
-        let mut unknowns = ordered_unknowns(sv, parts, part)?;
-        let n_p = unknowns.len();
-        unknowns.extend(ordered_unknowns(sv, parts, Part::Separator)?);
+    /// Pattern and symbolic analysis of Bᵢ whose unknowns are `unknowns`
+    /// (the first `n_p` are Pᵢ, the rest S, each in elimination order; storage
+    /// comes later, in [`Half::allocate`]).
+    fn analyse(pattern: &Pattern, unknowns: Vec<usize>, n_p: usize) -> Result<Self, FemError> {
         let n = unknowns.len();
         let (col_ptr, row_idx, gather) = sub_pattern(pattern, &unknowns);
         let a = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
@@ -219,6 +187,7 @@ impl Half {
             l_values: Vec::new(),
             mem: MemBuffer::new(StackReq::EMPTY),
             l_ss: Vec::new(),
+            product: Vec::new(),
             work: Vec::new(),
             t: Vec::new(),
             flops,
@@ -241,6 +210,7 @@ impl Half {
         self.l_values = zeros(self.symbolic.len_val(), "a split factor")?;
         self.vals = zeros(self.gather.len(), "a split block")?;
         self.l_ss = zeros(k * k, "the separator block")?;
+        self.product = zeros(k * k, "the separator block")?;
         self.work = zeros(n, "the solve")?;
         self.t = zeros(k, "the solve")?;
         Ok(())
@@ -250,8 +220,9 @@ impl Half {
         supernodal(&self.symbolic, &self.l_values)
     }
 
-    /// Numeric LLᵀ of Bᵢ (2) on one thread, then copy out L_SS⁽ⁱ⁾. On a
-    /// non-positive pivot, its local index.
+    /// Numeric LLᵀ of Bᵢ (2) on one thread, then copy out L_SS⁽ⁱ⁾ and form
+    /// its term of (3), L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ. On a non-positive pivot, its local
+    /// index.
     fn factorize(&mut self, values: &[f64]) -> Result<(), usize> {
         for (v, &slot) in self.vals.iter_mut().zip(&self.gather) {
             *v = values[slot];
@@ -270,6 +241,7 @@ impl Half {
         match result {
             Ok(_) => {
                 self.extract_l_ss();
+                self.form_product();
                 Ok(())
             }
             Err(LltError::NonPositivePivot { index }) => Err(index),
@@ -299,6 +271,26 @@ impl Half {
         self.l_ss = l_ss;
     }
 
+    /// `product` = L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ (lower triangle), on this thread.
+    fn form_product(&mut self) {
+        let k = self.k();
+        if k == 0 {
+            return;
+        }
+        let l = MatRef::from_column_major_slice(&self.l_ss, k, k);
+        matmul(
+            MatMut::from_column_major_slice_mut(&mut self.product, k, k),
+            BlockStructure::TriangularLower,
+            Accum::Replace,
+            l,
+            BlockStructure::TriangularLower,
+            l.transpose(),
+            BlockStructure::TriangularUpper,
+            1.0,
+            Par::Seq,
+        );
+    }
+
     /// Forward half of the solve: [yᵢ; zᵢ] of (4) in `work` and
     /// t = L_SS⁽ⁱ⁾ zᵢ (5).
     fn forward(&mut self, b: &[f64]) {
@@ -318,8 +310,8 @@ impl Half {
         self.t.fill(0.0);
         for (c, &zc) in z.iter().enumerate() {
             let col = &self.l_ss[k * c..][..k];
-            for r in c..k {
-                self.t[r] += col[r] * zc;
+            for (t, l) in self.t[c..].iter_mut().zip(&col[c..]) {
+                *t += l * zc;
             }
         }
         self.work = work;
@@ -355,6 +347,8 @@ pub(crate) struct SplitFactor {
     dense_mem: MemBuffer,
     /// x_S of (5).
     x_s: Vec<f64>,
+    /// See [`SplitFactor::phases`].
+    phases: [f64; 4],
 }
 
 /// A non-positive pivot of the split factorisation, as a position in the
@@ -362,40 +356,40 @@ pub(crate) struct SplitFactor {
 pub(crate) struct SplitPivot(pub usize);
 
 impl SplitFactor {
-    /// Bisect the vertex graph of `pattern` and analyse both halves; `None`
-    /// if the graph cannot be split. The bisection is aimed at equal flops
-    /// of the two halves: a first cut at half the unknowns, then, if the
-    /// halves' flops differ by more than 10 %, one cut re-aimed assuming
-    /// flops ∝ (unknowns)^1.5 on each side; the cheaper of the two is kept.
-    pub(crate) fn analyse(pattern: &Pattern) -> Result<Option<Self>, FemError> {
-        let sv = Supervariables::of(pattern);
-        let weight: Vec<f64> = sv.start.windows(2).map(|w| (w[1] - w[0]) as f64).collect();
-        let mut best: Option<([Half; 2], f64)> = None;
-        let mut fraction = 0.5;
-        for _ in 0..2 {
-            let Some(parts) = bisect(&sv, &weight, fraction) else {
-                return Ok(None);
-            };
-            let halves = [
-                Half::analyse(pattern, &sv, &parts, Part::First)?,
-                Half::analyse(pattern, &sv, &parts, Part::Second)?,
-            ];
-            let (f1, f2) = (halves[0].flops, halves[1].flops);
-            let cost = f1.max(f2) + (halves[0].k() as f64).powi(3);
-            if best.as_ref().is_none_or(|b| cost < b.1) {
-                best = Some((halves, cost));
-            }
-            if f1.max(f2) <= 1.1 * f1.min(f2) {
-                break;
-            }
-            let c1 = f1 / fraction.powf(1.5);
-            let c2 = f2 / (1.0 - fraction).powf(1.5);
-            let r = (c2 / c1).powf(1.0 / 1.5);
-            fraction = (r / (1.0 + r)).clamp(0.1, 0.9);
-        }
-        let Some((halves, _)) = best else {
+    /// Split the supernodal tree of the plain analysis `symbolic` of
+    /// `pattern` ([`super::tree`]) and analyse both halves; `None` if the
+    /// plain factor is simplicial or (unless `force`) no split is estimated
+    /// to pay.
+    pub(crate) fn analyse(
+        pattern: &Pattern,
+        symbolic: &SymbolicCholesky<usize>,
+        force: bool,
+    ) -> Result<Option<Self>, FemError> {
+        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
             return Ok(None);
         };
+        let Some(cut) = split(sn, force) else {
+            return Ok(None);
+        };
+        if std::env::var_os("ECC_SPLIT_DEBUG").is_some() {
+            eprintln!("split: critical {:.3e}", cut.critical);
+        }
+        let old = |new: usize| symbolic.perm().map_or(new, |p| p.arrays().0[new]);
+        let columns = |part: Part| -> Vec<usize> {
+            (0..sn.n_supernodes())
+                .filter(|&k| cut.parts[k] == part)
+                .flat_map(|k| sn.supernode_begin()[k]..sn.supernode_end()[k])
+                .map(old)
+                .collect()
+        };
+        let sep = columns(Part::Separator);
+        let half = |part| {
+            let mut unknowns = columns(part);
+            let n_p = unknowns.len();
+            unknowns.extend_from_slice(&sep);
+            Half::analyse(pattern, unknowns, n_p)
+        };
+        let halves = [half(Part::First)?, half(Part::Second)?];
         Self::with_halves(pattern, halves).map(Some)
     }
 
@@ -423,6 +417,7 @@ impl SplitFactor {
             schur: zeros(k * k, "the separator's Schur complement")?,
             dense_mem,
             x_s: zeros(k, "the solve")?,
+            phases: [0.0; 4],
         })
     }
 
@@ -470,8 +465,15 @@ impl SplitFactor {
     /// Numeric factorisation of A (upper-triangular `values` on the analysed
     /// pattern): (2) for both halves at once, then (3) and L_Σ.
     pub(crate) fn factorize(&mut self, values: &[f64]) -> Result<(), SplitPivot> {
+        let t0 = std::time::Instant::now();
         let [h1, h2] = &mut self.halves;
-        let (r1, r2) = rayon::join(|| h1.factorize(values), || h2.factorize(values));
+        let timed = |h: &mut Half| {
+            let t = std::time::Instant::now();
+            let r = h.factorize(values);
+            (r, t.elapsed().as_secs_f64())
+        };
+        let ((r1, d1), (r2, d2)) = rayon::join(|| timed(h1), || timed(h2));
+
         if let Err(p) = r1 {
             return Err(self.pivot(0, p));
         }
@@ -479,30 +481,28 @@ impl SplitFactor {
             return Err(self.pivot(1, p));
         }
         let k = self.sep.len();
+        let t1 = std::time::Instant::now();
         if k == 0 {
+            self.phases = [d1, d2, t1.duration_since(t0).as_secs_f64(), 0.0];
             return Ok(());
         }
         let par = Self::dense_par(k);
-        self.schur.fill(0.0);
+        let (m1, m2) = (&self.halves[0].product, &self.halves[1].product);
+        for c in 0..k {
+            let at = k * c + c..k * (c + 1);
+            for ((s, a), b) in self.schur[at.clone()]
+                .iter_mut()
+                .zip(&m1[at.clone()])
+                .zip(&m2[at])
+            {
+                *s = a + b;
+            }
+        }
         for &(c, r, slot) in &self.a_ss {
             // a_ss holds (column j, row i ≤ j): store at (max, min) = lower
             self.schur[r.max(c) + k * r.min(c)] -= values[slot];
         }
-        let mut schur = MatMut::from_column_major_slice_mut(&mut self.schur, k, k);
-        for h in &self.halves {
-            let l = MatRef::from_column_major_slice(&h.l_ss, k, k);
-            matmul(
-                schur.as_mut(),
-                BlockStructure::TriangularLower,
-                Accum::Add,
-                l,
-                BlockStructure::TriangularLower,
-                l.transpose(),
-                BlockStructure::TriangularUpper,
-                1.0,
-                par,
-            );
-        }
+        let schur = MatMut::from_column_major_slice_mut(&mut self.schur, k, k);
         cholesky_in_place(
             schur,
             Default::default(),
@@ -510,10 +510,23 @@ impl SplitFactor {
             MemStack::new(&mut self.dense_mem),
             Default::default(),
         )
-        .map(|_| ())
         .map_err(|LltError::NonPositivePivot { index }| {
             SplitPivot(self.halves[0].n_p + self.halves[1].n_p + index)
-        })
+        })?;
+        self.phases = [
+            d1,
+            d2,
+            t1.duration_since(t0).as_secs_f64(),
+            t1.elapsed().as_secs_f64(),
+        ];
+        Ok(())
+    }
+
+    /// Seconds of the last successful factorisation: half 1, half 2 (each
+    /// on its thread), both halves (the join) and the separator's Schur
+    /// complement and dense factorisation.
+    pub(crate) fn phases(&self) -> [f64; 4] {
+        self.phases
     }
 
     /// Solve A x = `rhs` in place with the last successful factorisation,
@@ -595,12 +608,12 @@ pub(crate) mod tests {
         let mut v = vec![0.0; p.nnz()];
         let mut row_sum = vec![0.0; p.n()];
         for j in 0..p.n() {
-            for e in p.col_ptr()[j]..p.col_ptr()[j + 1] {
-                let i = p.row_idx()[e];
+            let range = p.col_ptr()[j]..p.col_ptr()[j + 1];
+            for (ve, &i) in v[range.clone()].iter_mut().zip(&p.row_idx()[range]) {
                 if i != j {
-                    v[e] = rng.gen_range(-1.0..1.0);
-                    row_sum[i] += f64::abs(v[e]);
-                    row_sum[j] += f64::abs(v[e]);
+                    *ve = rng.gen_range(-1.0..1.0);
+                    row_sum[i] += f64::abs(*ve);
+                    row_sum[j] += f64::abs(*ve);
                 }
             }
         }
@@ -618,9 +631,46 @@ pub(crate) mod tests {
         norm(&r) / norm(b)
     }
 
+    /// The split of `p` from faer's AMD analysis made supernodal whatever
+    /// its size (below 100 unknowns, fundamental supernodes: relaxation would
+    /// merge a tiny matrix into one supernode, which cannot be split).
+    pub(crate) fn analyse(p: &Pattern) -> Option<SplitFactor> {
+        let n = p.n();
+        let a = SymbolicSparseColMatRef::new_checked(n, n, p.col_ptr(), None, p.row_idx());
+        let mut params = CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        };
+        if n < 100 {
+            params.supernodal_params.relax = None;
+        }
+        let symbolic =
+            factorize_symbolic_cholesky(a, faer::Side::Upper, SymmetricOrdering::Amd, params)
+                .unwrap();
+        SplitFactor::analyse(p, &symbolic, true).unwrap()
+    }
+
+    /// No entry of A couples the two halves' P parts.
+    fn halves_are_uncoupled(p: &Pattern, split: &SplitFactor) {
+        let mut side = vec![2usize; p.n()];
+        for (i, h) in split.halves.iter().enumerate() {
+            h.unknowns[..h.n_p].iter().for_each(|&u| side[u] = i);
+        }
+        for j in 0..p.n() {
+            for &i in &p.row_idx()[p.col_ptr()[j]..p.col_ptr()[j + 1]] {
+                assert!(
+                    side[i] == 2 || side[j] == 2 || side[i] == side[j],
+                    "A[{i},{j}]"
+                );
+            }
+        }
+        assert!(split.halves.iter().all(|h| h.n_p > 0));
+    }
+
     /// Split solve vs the plain factorisation on random SPD values.
     fn agrees_with_plain(p: &Pattern, expect_separator: bool) {
-        let mut split = SplitFactor::analyse(p).unwrap().expect("splittable");
+        let mut split = analyse(p).unwrap_or_else(|| panic!("not splittable: n = {}", p.n()));
+        halves_are_uncoupled(p, &split);
         assert_eq!(split.separator_len() > 0, expect_separator);
         let mut plain = CholeskyFactor::analyze(p).unwrap();
         for seed in 0..3 {
@@ -658,13 +708,13 @@ pub(crate) mod tests {
 
     #[test]
     fn an_unsplittable_graph_is_reported_not_forced() {
-        assert!(SplitFactor::analyse(&triangle().0).unwrap().is_none());
+        assert!(analyse(&triangle().0).is_none());
     }
 
     #[test]
     fn an_indefinite_matrix_is_reported_in_either_half_or_the_separator() {
         let p = grid(20, 10, 2);
-        let mut split = SplitFactor::analyse(&p).unwrap().unwrap();
+        let mut split = analyse(&p).unwrap();
         let n = p.n();
         for bad in [0, n / 2, n - 1] {
             let mut v = random_spd(&p, 7);
@@ -682,7 +732,7 @@ pub(crate) mod tests {
         let v = random_spd(&p, 3);
         let b: Vec<f64> = (0..p.n()).map(|i| (0.1 * i as f64).cos()).collect();
         let run = || {
-            let mut s = SplitFactor::analyse(&p).unwrap().unwrap();
+            let mut s = analyse(&p).unwrap();
             s.factorize(&v).ok().unwrap();
             let mut x = b.clone();
             s.solve_in_place(&mut x);

@@ -1,0 +1,157 @@
+//! The vertex separator of the split factorisation ([`super::split`]), read
+//! off the supernodal elimination tree of the plain symbolic analysis.
+//!
+//! In the factor L of A (fill-reducing order, supernodal), the rows of a
+//! supernode's columns are its own columns and those of its ancestors, so
+//! A[i, j] ≠ 0 only for i, j in the same supernode or in an
+//! ancestor–descendant pair. Take a set S of supernodes closed under
+//! "parent of": removing S leaves a forest of subtrees, two distinct
+//! subtrees are never coupled in A, and any grouping of the subtrees into
+//! P₁ and P₂ makes S a vertex separator. Each subtree keeps its columns'
+//! structure in the half Bᵢ = A[Pᵢ∪S] (its columns' rows lie in the
+//! subtree and in S), so the halves cost exactly their share of the plain
+//! factorisation's flops, plus the separator's dense block: no ordering is
+//! lost by splitting.
+//!
+//! S grows from the roots: repeatedly the heaviest subtree of the forest
+//! moves its root supernode into S (its children become subtrees), and the
+//! forest is split between the two halves by longest-processing-time
+//! greedy on subtree flops. The S with the least estimated critical path,
+//! max(flops of a half) + k³ (k separator unknowns: its dense block in each
+//! half, the products and L_Σ of the Schur complement), is kept.
+
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+
+/// Weight of k³ in the estimated critical path (see the module docs).
+const DENSE_WEIGHT: f64 = 0.5;
+
+/// At most this many supernodes move into S (each step is O(forest)).
+const MAX_STEPS: usize = 256;
+
+/// Which part of the bisection a supernode belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Part {
+    /// First half, P₁.
+    First,
+    /// Second half, P₂.
+    Second,
+    /// The separator S.
+    Separator,
+}
+
+/// The chosen split: per supernode its part, and the estimated flops.
+pub(crate) struct TreeSplit {
+    pub parts: Vec<Part>,
+    /// Estimated critical path (flops measure of [`super::flops`]).
+    pub critical: f64,
+}
+
+/// Flops Σ c² of supernode `s` (width w, r off-diagonal rows).
+fn node_flops(s: &SymbolicSupernodalCholesky<usize>, k: usize) -> f64 {
+    let w = s.supernode_end()[k] - s.supernode_begin()[k];
+    let r = s.supernode(k).pattern().len();
+    (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum()
+}
+
+/// Parent supernode of each supernode (`usize::MAX` for a root).
+fn parents(s: &SymbolicSupernodalCholesky<usize>) -> Vec<usize> {
+    let ends = s.supernode_end();
+    (0..s.n_supernodes())
+        .map(|k| match s.supernode(k).pattern().iter().min() {
+            Some(&row) => ends.partition_point(|&e| e <= row),
+            None => usize::MAX,
+        })
+        .collect()
+}
+
+/// Longest-processing-time split of `forest` (subtree roots) by `weight`:
+/// the bin of each root and the two bin totals.
+fn two_bins(forest: &[usize], weight: &[f64]) -> (Vec<(usize, Part)>, [f64; 2]) {
+    let mut sorted = forest.to_vec();
+    sorted.sort_by(|&a, &b| weight[b].total_cmp(&weight[a]).then(a.cmp(&b)));
+    let mut bins = [0.0, 0.0];
+    let assigned = sorted
+        .into_iter()
+        .map(|r| {
+            let i = usize::from(bins[1] < bins[0]);
+            bins[i] += weight[r];
+            (r, if i == 0 { Part::First } else { Part::Second })
+        })
+        .collect();
+    (assigned, bins)
+}
+
+/// The split of the supernodal tree with the least estimated critical path,
+/// or `None` when one half would be empty or (unless `force`) no split is
+/// estimated faster than the plain factorisation.
+pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Option<TreeSplit> {
+    let n = s.n_supernodes();
+    let parent = parents(s);
+    let mut subtree: Vec<f64> = (0..n).map(|k| node_flops(s, k)).collect();
+    let mut children = vec![Vec::new(); n];
+    for k in 0..n {
+        // a parent's columns follow its children's: ascending k is bottom-up
+        if parent[k] != usize::MAX {
+            subtree[parent[k]] += subtree[k];
+            children[parent[k]].push(k);
+        }
+    }
+    let total: f64 = (0..n)
+        .filter(|&k| parent[k] == usize::MAX)
+        .map(|k| subtree[k])
+        .sum();
+    let mut forest: Vec<usize> = (0..n).filter(|&k| parent[k] == usize::MAX).collect();
+    let mut separator: Vec<usize> = Vec::new();
+    let mut k_cols = 0usize;
+    // (critical path, separator supernodes, forest roots with their half)
+    type Candidate = (f64, Vec<usize>, Vec<(usize, Part)>);
+    let mut best: Option<Candidate> = None;
+    for _ in 0..MAX_STEPS {
+        let (assigned, bins) = two_bins(&forest, &subtree);
+        if bins[0] > 0.0 && bins[1] > 0.0 {
+            let cost = bins[0].max(bins[1]) + DENSE_WEIGHT * (k_cols as f64).powi(3);
+            if std::env::var_os("ECC_SPLIT_DEBUG").is_some() {
+                eprintln!(
+                    "tree: k {k_cols} bins {:.3e} {:.3e} cost {cost:.3e}",
+                    bins[0], bins[1]
+                );
+            }
+            if best.as_ref().is_none_or(|b| cost < b.0) {
+                best = Some((cost, separator.clone(), assigned));
+            }
+        }
+        let Some((at, &heaviest)) = forest
+            .iter()
+            .enumerate()
+            .max_by(|a, b| subtree[*a.1].total_cmp(&subtree[*b.1]))
+        else {
+            break;
+        };
+        if subtree[heaviest] < 0.25 * total {
+            break;
+        }
+        forest.swap_remove(at);
+        forest.extend_from_slice(&children[heaviest]);
+        separator.push(heaviest);
+        k_cols += s.supernode_end()[heaviest] - s.supernode_begin()[heaviest];
+    }
+    let (critical, separator, assigned) = best?;
+    if critical >= total && !force {
+        return None;
+    }
+    let mut parts = vec![Part::First; n];
+    let mut fixed = vec![false; n];
+    for &k in &separator {
+        (parts[k], fixed[k]) = (Part::Separator, true);
+    }
+    for &(k, p) in &assigned {
+        (parts[k], fixed[k]) = (p, true);
+    }
+    // top-down: a supernode below a forest root inherits the root's half
+    for k in (0..n).rev() {
+        if !fixed[k] {
+            parts[k] = parts[parent[k]];
+        }
+    }
+    Some(TreeSplit { parts, critical })
+}
