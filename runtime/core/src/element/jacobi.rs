@@ -5,7 +5,8 @@
 //!
 //! **Method** (Golub & Van Loan, *Matrix Computations*, 4th ed., §8.5.2–8.5.3;
 //! the rotation of Rutishauser 1966). A sweep visits every off-diagonal pair
-//! (p, q), p < q, and annihilates a_pq with the plane rotation J(p, q, θ):
+//! (p, q), p < q, in rounds of disjoint pairs ([`tournament`]) and annihilates
+//! a_pq with the plane rotation J(p, q, θ):
 //!
 //! (1) ϑ = (a_qq − a_pp) / (2 a_pq),  t = sign(ϑ) / (|ϑ| + √(ϑ² + 1)),
 //!     c = 1/√(t² + 1),  s = t c  (|θ| ≤ π/4, the smaller root),
@@ -15,7 +16,7 @@
 //!
 //! and accumulates the same rotation into the eigenvector rows
 //! v_p ← c v_p − s v_q, v_q ← s v_p + c v_q. off(A)² = Σ_{p≠q} a_pq² falls by
-//! 2 a_pq² per rotation, and the cyclic order converges quadratically once
+//! 2 a_pq² per rotation, and the sweep order converges quadratically once
 //! off(A) is below the smallest eigenvalue gap (ultimately also for repeated
 //! eigenvalues): 4×4 matrices take 3–5 sweeps, 9×9 ones 5–8.
 //!
@@ -38,10 +39,53 @@
 /// R ≤ 9; the bound only guards against non-termination).
 pub const MAX_SWEEPS: usize = 40;
 
+/// The pairs (p, q) of one sweep in the round-robin ("tournament") order of
+/// Brent & Luk (1985): R − 1 rounds (R even) or R rounds (R odd) of ⌊R/2⌋
+/// disjoint pairs. Rotations of disjoint pairs commute and their angles (1)
+/// depend on disjoint entries, so a round computes all its angles first and
+/// the latencies of their square roots and divisions overlap. The ordering
+/// converges quadratically like the row-cyclic one. `N` = R rounded up to
+/// even; a pair containing the dummy index R (R odd) is a bye, q = `usize::MAX`.
+const fn tournament<const N: usize>(r: usize) -> [[(usize, usize); 5]; 9] {
+    let mut out = [[(usize::MAX, usize::MAX); 5]; 9];
+    let mut round = 0;
+    while round < N - 1 {
+        let mut k = 0;
+        while k < N / 2 {
+            // Circle method: player 0 fixed, the others rotate.
+            let (a, b) = (circle::<N>(k, round), circle::<N>(N - 1 - k, round));
+            let (p, q) = if a < b { (a, b) } else { (b, a) };
+            out[round][k] = if q >= r { (p, usize::MAX) } else { (p, q) };
+            k += 1;
+        }
+        round += 1;
+    }
+    out
+}
+
+/// Seat `i`'s player in round `round` of the circle method (seat 0 fixed).
+const fn circle<const N: usize>(i: usize, round: usize) -> usize {
+    if i == 0 {
+        0
+    } else {
+        (i + round - 1) % (N - 1) + 1
+    }
+}
+
+/// Pairs per sweep: rounds × slots (R = 4: 3 × 2; R = 9: 9 × 5, one bye each).
+const ROUNDS4: [[(usize, usize); 5]; 9] = tournament::<4>(4);
+const ROUNDS9: [[(usize, usize); 5]; 9] = tournament::<10>(9);
+
 /// Eigenvalues (unsorted) and unit eigenvectors (`vecs[k]` belongs to
 /// `vals[k]`) of the symmetric R×R matrix `a` (only its upper triangle is
 /// read), or `None` when `a` is not finite or the sweeps did not converge.
+/// R must be 4 or 9 (the congruence sizes); other sizes return `None`.
 pub fn jacobi_eigen<const R: usize>(a: &[[f64; R]; R]) -> Option<([f64; R], [[f64; R]; R])> {
+    let (rounds, nr, slots) = match R {
+        4 => (&ROUNDS4, 3, 2),
+        9 => (&ROUNDS9, 9, 5),
+        _ => return None,
+    };
     let mut a = symmetrised(a)?;
     let mut v = [[0.0; R]; R];
     for (k, row) in v.iter_mut().enumerate() {
@@ -50,13 +94,21 @@ pub fn jacobi_eigen<const R: usize>(a: &[[f64; R]; R]) -> Option<([f64; R], [[f6
     let tau = f64::EPSILON * a.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
     for _ in 0..MAX_SWEEPS {
         let mut rotated = false;
-        for p in 0..R {
-            for q in p + 1..R {
-                if a[p][q].abs() > tau {
-                    rotate(&mut a, &mut v, p, q);
-                    rotated = true;
+        for round in &rounds[..nr] {
+            // Angles of the round's pairs (independent), then the rotations.
+            let mut rot = [(0usize, 0usize, 0.0f64, 0.0f64, 0.0f64); 5];
+            let mut n = 0;
+            for &(p, q) in &round[..slots] {
+                if q != usize::MAX && a[p][q].abs() > tau {
+                    let (t, c, s) = angle(a[p][p], a[q][q], a[p][q]);
+                    rot[n] = (p, q, t, c, s);
+                    n += 1;
                 }
             }
+            for &(p, q, t, c, s) in &rot[..n] {
+                rotate(&mut a, &mut v, p, q, t, c, s);
+            }
+            rotated |= n > 0;
         }
         if !rotated {
             return Some((std::array::from_fn(|k| a[k][k]), v));
@@ -79,11 +131,10 @@ fn symmetrised<const R: usize>(a: &[[f64; R]; R]) -> Option<[[f64; R]; R]> {
     Some(s)
 }
 
-/// One Jacobi rotation annihilating a_pq (eqs. 1–2), accumulated into `v`.
+/// (t, c, s) of eq. (1) for a_pp, a_qq, a_pq ≠ 0.
 #[inline(always)]
-fn rotate<const R: usize>(a: &mut [[f64; R]; R], v: &mut [[f64; R]; R], p: usize, q: usize) {
-    let apq = a[p][q];
-    let theta = (a[q][q] - a[p][p]) / (2.0 * apq);
+fn angle(app: f64, aqq: f64, apq: f64) -> (f64, f64, f64) {
+    let theta = (aqq - app) / (2.0 * apq);
     // For |ϑ| > 1e150, ϑ² would overflow: t = 1/(2ϑ) to working precision.
     let t = if theta.abs() > 1e150 {
         0.5 / theta
@@ -91,7 +142,21 @@ fn rotate<const R: usize>(a: &mut [[f64; R]; R], v: &mut [[f64; R]; R], p: usize
         theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt())
     };
     let c = 1.0 / (t * t + 1.0).sqrt();
-    let s = t * c;
+    (t, c, t * c)
+}
+
+/// The Jacobi rotation (2) annihilating a_pq, accumulated into `v`.
+#[inline(always)]
+fn rotate<const R: usize>(
+    a: &mut [[f64; R]; R],
+    v: &mut [[f64; R]; R],
+    p: usize,
+    q: usize,
+    t: f64,
+    c: f64,
+    s: f64,
+) {
+    let apq = a[p][q];
     a[p][p] -= t * apq;
     a[q][q] += t * apq;
     a[p][q] = 0.0;
@@ -131,6 +196,29 @@ mod tests {
             }
         }
         (rec, orth)
+    }
+    #[test]
+    fn a_sweep_visits_every_pair_once() {
+        for (rounds, nr, slots, r) in [(&super::ROUNDS4, 3, 2, 4), (&super::ROUNDS9, 9, 5, 9)] {
+            let mut seen = vec![0; r * r];
+            for round in &rounds[..nr] {
+                let mut used = vec![false; r];
+                for &(p, q) in &round[..slots] {
+                    if q == usize::MAX {
+                        continue;
+                    }
+                    assert!(p < q && q < r && !used[p] && !used[q], "{p} {q}");
+                    used[p] = true;
+                    used[q] = true;
+                    seen[p * r + q] += 1;
+                }
+            }
+            for p in 0..r {
+                for q in p + 1..r {
+                    assert_eq!(seen[p * r + q], 1, "pair ({p}, {q}) of {r}");
+                }
+            }
+        }
     }
 
     #[test]
