@@ -150,64 +150,43 @@ pub fn run_limited(
     };
     let rest2 = Rest::<2>::new(REST_TRI).map_err(|e| EnergySetError(e.to_string()))?;
     let rest3 = Rest::<3>::new(REST_TET).map_err(|e| EnergySetError(e.to_string()))?;
-    for e in energies2()?.into_iter().take(energies) {
-        for (ci, c) in CLASSES.iter().enumerate().take(classes) {
-            if e.barrier && c.inverted && !c.random {
-                continue;
-            }
-            let fs = samples2(c, n, e.barrier, 100 + ci as u64);
-            let per: Vec<_> = fs
-                .par_iter()
-                .map(|f| {
-                    let el = Element2::new(rest2, deform(f, &REST_TRI));
-                    let size = el
-                        .x_flat()
-                        .iter()
-                        .fold(0.0f64, |a, v| a.max(v.abs()))
-                        .max(1.0);
-                    let r = reference(&e.generic, &el.dm_inv(), el.measure(), &el.x_flat());
-                    let errs = Method::ALL
-                        .iter()
-                        .map(|&m| {
-                            let out = el.run(m, &*e.generated, &*e.interp, &e.generic);
-                            (m, errors(&out, &r, m.target(), size))
+    // One study per dimension: the element types are distinct structs (see
+    // `kernels::element_kind!`), so the loop is written once as a macro.
+    macro_rules! study {
+        ($dim:literal, $energies:expr, $samples:ident, $element:ident, $rest:expr, $nodes:expr, $seed:literal) => {
+            for e in $energies.into_iter().take(energies) {
+                for (ci, c) in CLASSES.iter().enumerate().take(classes) {
+                    if e.barrier && c.inverted && !c.random {
+                        continue;
+                    }
+                    let fs = $samples(c, n, e.barrier, $seed + ci as u64);
+                    let per: Vec<_> = fs
+                        .par_iter()
+                        .map(|f| {
+                            let el = $element::new($rest, deform(f, &$nodes));
+                            let size = el
+                                .x_flat()
+                                .iter()
+                                .fold(0.0f64, |a, v| a.max(v.abs()))
+                                .max(1.0);
+                            let r = reference(&e.generic, &el.dm_inv(), el.measure(), &el.x_flat());
+                            let errs = Method::ALL
+                                .iter()
+                                .map(|&m| {
+                                    let out = el.run(m, &*e.generated, &*e.interp, &e.generic);
+                                    (m, errors(&out, &r, m.target(), size))
+                                })
+                                .collect();
+                            (r, errs)
                         })
                         .collect();
-                    (r, errs)
-                })
-                .collect();
-            fold_rows(2, e.name, c.name, &per, &mut result);
-        }
-    }
-    for e in energies3()?.into_iter().take(energies) {
-        for (ci, c) in CLASSES.iter().enumerate().take(classes) {
-            if e.barrier && c.inverted && !c.random {
-                continue;
+                    fold_rows($dim, e.name, c.name, &per, &mut result);
+                }
             }
-            let fs = samples3(c, n, e.barrier, 200 + ci as u64);
-            let per: Vec<_> = fs
-                .par_iter()
-                .map(|f| {
-                    let el = Element3::new(rest3, deform(f, &REST_TET));
-                    let size = el
-                        .x_flat()
-                        .iter()
-                        .fold(0.0f64, |a, v| a.max(v.abs()))
-                        .max(1.0);
-                    let r = reference(&e.generic, &el.dm_inv(), el.measure(), &el.x_flat());
-                    let errs = Method::ALL
-                        .iter()
-                        .map(|&m| {
-                            let out = el.run(m, &*e.generated, &*e.interp, &e.generic);
-                            (m, errors(&out, &r, m.target(), size))
-                        })
-                        .collect();
-                    (r, errs)
-                })
-                .collect();
-            fold_rows(3, e.name, c.name, &per, &mut result);
-        }
+        };
     }
+    study!(2, energies2()?, samples2, Element2, rest2, REST_TRI, 100);
+    study!(3, energies3()?, samples3, Element3, rest3, REST_TET, 200);
     result.seconds = t0.elapsed().as_secs_f64();
     Ok(result)
 }
