@@ -101,3 +101,104 @@ fn bad_fibre_keys_are_located_errors() {
         assert!(err.to_string().contains(want), "{extra}: {err}");
     }
 }
+
+/// `result.png` of a small fibre scene with and without `draw_fibers`.
+fn fibre_pictures(draw: bool) -> (Vec<u8>, (u32, u32), Vec<String>) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let text = format!(
+        r#"
+name = "fibre-picture"
+frames = 1
+[mesh]
+generate = "bar"
+resolution = 2
+[energy]
+name = "snh"
+params = {{ mu = 1.0, lambda = 10.0 }}
+[fibers]
+params = {{ mu = 20.0 }}
+around = {{ point = [0, 0, 0], axis = [1, 0, 0], angle = 45 }}
+[[effects.handles]]
+plane = {{ point = [-1.99, 0, 0], normal = [-1, 0, 0] }}
+[[effects.handles]]
+plane = {{ point = [1.99, 0, 0], normal = [1, 0, 0] }}
+keys = [ {{ frame = 1, translate = [0.4, 0, 0] }} ]
+[output]
+formats = []
+image_size = [480, 360]
+draw_fibers = {draw}
+"#
+    );
+    let f = SceneFile::parse(&text, "scene.toml", dir.path()).unwrap();
+    let opts = RunOptions {
+        out_dir: Some(out.clone()),
+        ..Default::default()
+    };
+    let r = run_scene(&f, &RuntimeEnergies, &opts, &mut Silent).unwrap();
+    assert_eq!(r.summary.converged_frames, 1);
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    let dec = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(out.join("result.png")).unwrap(),
+    ));
+    let mut reader = dec.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    assert_eq!(info.color_type, png::ColorType::Rgb, "8-bit RGB pictures");
+    (buf, (info.width, info.height), names)
+}
+
+/// The fibres are drawn (on the body, plus the legend) when the scene has
+/// `[fibers]`, `draw_fibers = false` turns them off, and the picture is
+/// written like the others (complete, listed, no temporary file left).
+#[test]
+fn the_picture_draws_the_fibres_on_the_body() {
+    let (on, size, names) = fibre_pictures(true);
+    let (off, size_off, names_off) = fibre_pictures(false);
+    assert_eq!(size, (480, 360));
+    assert_eq!(size, size_off);
+    let want = ["convergence.png", "result.png", "summary.json"];
+    assert_eq!(names, want, "no temporary files may remain");
+    assert_eq!(names_off, want);
+    let (w, h) = (size.0 as usize, size.1 as usize);
+    let px = |b: &[u8], x: usize, y: usize| -> [f32; 3] {
+        let i = 3 * (y * w + x);
+        [b[i], b[i + 1], b[i + 2]].map(|c| c as f32 / 255.0)
+    };
+    // body pixels of the plain picture: anything darker than the pale
+    // background gradient (#e9eef5 → #fbfbfb)
+    let body = |c: [f32; 3]| c.iter().any(|v| *v < 0.85);
+    // the legend sits in the top-right quarter, under the title
+    let legend = |x: usize, y: usize| x > w / 2 && y < h / 4;
+    let (mut changed, mut on_body) = (0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let (a, b) = (px(&on, x, y), px(&off, x, y));
+            let d = (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f32::max);
+            if d > 0.1 && !legend(x, y) {
+                changed += 1;
+                // on the body or within 3 px of it (segment ends and halos
+                // at the silhouette)
+                let near = (y.saturating_sub(3)..(y + 4).min(h)).any(|yy| {
+                    (x.saturating_sub(3)..(x + 4).min(w)).any(|xx| body(px(&off, xx, yy)))
+                });
+                on_body += usize::from(near);
+            }
+        }
+    }
+    assert!(changed > 300, "only {changed} pixels changed");
+    assert!(
+        on_body as f64 > 0.97 * changed as f64,
+        "{on_body} of {changed} changed pixels on the body"
+    );
+    let legend_changed = (0..h / 4)
+        .flat_map(|y| (w / 2..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| px(&on, x, y) != px(&off, x, y))
+        .count();
+    assert!(legend_changed > 200, "no legend ({legend_changed} pixels)");
+}

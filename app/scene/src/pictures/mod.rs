@@ -8,6 +8,8 @@
 //!   around the up direction (−gravity, else the ground normal, else +y),
 //!   with handles in orange and the ground as a checker floor; a strip of
 //!   thumbnails shows earlier frames.
+//!   With fibres ([`volume_fibres`]), each skin element's deformed fibre
+//!   direction F a is drawn through its centroid, coloured by √I5.
 //! * [`planar`]: planar triangle meshes coloured by conformal distortion
 //!   σ₁/σ₂, with the rest outline and handles.
 //! * [`parameterization`]: the surface with a checkerboard mapped through
@@ -20,6 +22,7 @@
 
 mod backend;
 mod chart;
+mod fibres;
 mod image;
 mod param;
 mod planar;
@@ -29,11 +32,12 @@ mod text;
 mod volume;
 
 pub use chart::{Chart, Legend, PALETTE, Series};
+pub use fibres::Fibres;
 pub use image::{Orient, Picture, Rgb, hex, mix};
 pub use param::parameterization;
 pub use planar::planar;
 pub use plot::convergence;
-pub use volume::volume;
+pub use volume::{volume, volume_fibres};
 
 /// How to draw a body.
 #[derive(Clone, Copy, Debug)]

@@ -2,6 +2,7 @@
 
 use ecc_mesh::tet_boundary_faces;
 
+use super::fibres::{self, Fibres};
 use super::image::{Orient, Picture, Rgb, hex, scale};
 use super::raster::{Camera, Layer, SS, cover, cross, dot, normalize, sub, triangle};
 use super::{View, title, title_height};
@@ -203,7 +204,8 @@ fn draw_shadow(
     layer.darken(&mask, 0.72);
 }
 
-/// One shot of the body (with ground and shadow) into a viewport of `pic`.
+/// One shot of the body (with ground and shadow) into a viewport of `pic`,
+/// with fibre segments drawn over it when given.
 #[allow(clippy::too_many_arguments)]
 fn draw_shot(
     pic: &mut Picture,
@@ -214,6 +216,7 @@ fn draw_shot(
     view: &View<'_>,
     sphere: ([f64; 3], f64),
     wire: bool,
+    fibres: Option<(&[fibres::Segment], fibres::StretchScale)>,
 ) {
     let (centre, r) = sphere;
     let (dir, up) = orbit(view.up, view.camera.0, view.camera.1);
@@ -231,12 +234,35 @@ fn draw_shot(
         wire,
     };
     draw_body(&mut layer, &cam, &scene, up);
+    if let Some((segs, scale)) = fibres {
+        fibres::draw(&mut layer, &cam, segs, scale);
+    }
     layer.composite(pic);
 }
 
 /// The boundary of a tet mesh in each shot; the last shot is the main panel,
 /// with a strip of up to six thumbnails below when there are more than two.
 pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View<'_>) -> Picture {
+    volume_with(tets, shots, view, None)
+}
+
+/// [`volume`] with each element's deformed fibre direction drawn in the
+/// main panel, coloured by stretch, with a legend (see [`fibres`]).
+pub fn volume_fibres(
+    tets: &[[usize; 4]],
+    shots: &[(usize, Vec<[f64; 3]>)],
+    view: &View<'_>,
+    fibres: &Fibres<'_>,
+) -> Picture {
+    volume_with(tets, shots, view, Some(fibres))
+}
+
+fn volume_with(
+    tets: &[[usize; 4]],
+    shots: &[(usize, Vec<[f64; 3]>)],
+    view: &View<'_>,
+    fibres: Option<&Fibres<'_>>,
+) -> Picture {
     let (w, h) = (view.size.0 as f64, view.size.1 as f64);
     let mut pic = Picture::new(view.size.0, view.size.1, [1.0; 3]);
     pic.gradient(hex(0xe9eef5), hex(0xfbfbfb));
@@ -254,8 +280,10 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
     // the main panel frames the result (with a ground: the whole motion
     // above it); thumbnails share one framing of all shots
     let main_pts: &[[f64; 3]] = if view.ground.is_some() { &every } else { last };
+    let segs = fibres.map(|f| fibres::segments(tets, last, f));
+    let overlay = segs.as_deref().map(|s| (s, fibres::StretchScale::of(s)));
     draw_shot(
-        &mut pic, main_vp, main_pts, &faces, last, view, sphere, true,
+        &mut pic, main_vp, main_pts, &faces, last, view, sphere, true, overlay,
     );
     title(
         &mut pic,
@@ -266,6 +294,9 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
             faces.len()
         ),
     );
+    if let Some((_, scale)) = overlay {
+        fibres::legend(&mut pic, scale);
+    }
     if strip > 0.0 {
         let k = shots.len().min(6);
         let cell = (w - 2.0 * margin) / k as f64;
@@ -289,6 +320,7 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
                 view,
                 sphere,
                 false,
+                None,
             );
             let text = format!("frame {}", shots[i].0);
             pic.text(card.0, y0, &text, label, hex(0x404040), Orient::Across);

@@ -235,7 +235,15 @@ where
         ground: ground_plane(file),
         up: up_direction(file),
     };
-    let pic = <Dims as Dim<D>>::picture(&engine.body, shots, &view);
+    let fibres = if file.scene.output.draw_fibers.unwrap_or(true) {
+        crate::terms::fibre::picture_directions::<D>(file, &engine.body)?
+    } else {
+        None
+    };
+    let pic = match fibres.as_deref() {
+        Some(dirs) => <Dims as Dim<D>>::picture_fibres(&engine.body, shots, &view, dirs),
+        None => <Dims as Dim<D>>::picture(&engine.body, shots, &view),
+    };
     o.write("result.png", &pic.to_png())?;
     let plot = pictures::convergence(
         &summary.solves,

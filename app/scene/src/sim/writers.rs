@@ -132,6 +132,13 @@ pub(crate) trait Dim<const D: usize> {
         shots: &[(usize, Vec<[f64; D]>)],
         view: &pictures::View<'_>,
     ) -> Picture;
+    /// The picture with the scene's fibres (one rest direction per element) drawn.
+    fn picture_fibres(
+        body: &Body<D>,
+        shots: &[(usize, Vec<[f64; D]>)],
+        view: &pictures::View<'_>,
+        dirs: &[[f64; D]],
+    ) -> Picture;
     fn state(body: &Body<D>, x: Vec<[f64; D]>) -> FinalState;
 }
 
@@ -159,6 +166,16 @@ impl Dim<2> for Dims {
         pictures::planar(tris, &body.rest, shots, view)
     }
 
+    fn picture_fibres(
+        body: &Body<2>,
+        shots: &[(usize, Vec<[f64; 2]>)],
+        view: &pictures::View<'_>,
+        _dirs: &[[f64; 2]],
+    ) -> Picture {
+        // planar pictures do not draw fibres yet (volume pictures do)
+        Self::picture(body, shots, view)
+    }
+
     fn state(body: &Body<2>, x: Vec<[f64; 2]>) -> FinalState {
         let (tris, _) = body.elements.as_chunks::<3>();
         FinalState::Planar {
@@ -182,6 +199,20 @@ impl Dim<3> for Dims {
     ) -> Picture {
         let (tets, _) = body.elements.as_chunks::<4>();
         pictures::volume(tets, shots, view)
+    }
+
+    fn picture_fibres(
+        body: &Body<3>,
+        shots: &[(usize, Vec<[f64; 3]>)],
+        view: &pictures::View<'_>,
+        dirs: &[[f64; 3]],
+    ) -> Picture {
+        let (tets, _) = body.elements.as_chunks::<4>();
+        let fibres = pictures::Fibres {
+            rest: &body.rest,
+            dirs,
+        };
+        pictures::volume_fibres(tets, shots, view, &fibres)
     }
 
     fn state(body: &Body<3>, x: Vec<[f64; 3]>) -> FinalState {

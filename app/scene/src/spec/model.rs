@@ -448,4 +448,12 @@ pub struct OutputSpec {
     /// Camera azimuth and elevation in degrees (default `[35, 25]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub camera: Option<Vec<f64>>,
+    /// Draw the `[fibers]` directions in `result.png` (default true; only
+    /// with a `[fibers]` table).
+    #[serde(
+        default,
+        alias = "draw_fibres",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub draw_fibers: Option<bool>,
 }

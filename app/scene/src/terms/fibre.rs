@@ -198,6 +198,18 @@ where
     Ok(Box::new(term))
 }
 
+/// The rest fibre direction of every element of `[fibers]` (for the picture),
+/// if the scene has fibres: the same directions as the term's.
+pub(crate) fn picture_directions<const D: usize>(
+    file: &SceneFile,
+    body: &Body<D>,
+) -> Result<Option<Vec<[f64; D]>>, SceneError> {
+    match &file.scene.fibers {
+        Some(spec) => directions(spec, file, body).map(Some),
+        None => Ok(None),
+    }
+}
+
 /// The fibre term of `[fibers]`, if the scene has one.
 pub fn fibre_term<const D: usize>(
     file: &SceneFile,
