@@ -18,7 +18,7 @@
 //!    columns so U, V stay in SO(3).
 
 use super::{Svd, non_finite, signed_svd2};
-use crate::sym::sym3_eigen_scaled;
+use crate::sym::{cross, dot, sym3_eigen_scaled};
 use nalgebra::{Matrix2, Matrix3};
 
 /// Signed SVD of a 3×3 matrix (see the module docs for the algorithm).
@@ -132,20 +132,6 @@ fn pow2_scale(big: f64) -> (f64, f64) {
 /// 2^k exactly, for |k| ≤ 1022.
 fn exp2i(k: i32) -> f64 {
     f64::from_bits(((k + 1023) as u64) << 52)
-}
-
-#[inline]
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-#[inline]
-fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 #[inline]
