@@ -5,7 +5,9 @@
 //!
 //! `cargo run --release -p ecc-fem --example reuse -- MESH|disk:RINGS SOLVER [REUSE]`
 //!
-//! SOLVER: `cholesky`, `pcg` or `auto`; REUSE: `off` or `ITERS:TOL[:THETA]`
+//! SOLVER: `cholesky`, `pcg` or `auto`, optionally `:jacobi`,
+//! `:block_jacobi` or `:ic0` (the PCG preconditioner, default IC(0)) and
+//! for `auto` `:CAP` (`AutoLimits::pcg_rel_tol`); REUSE: `off` or `ITERS:TOL[:THETA]`
 //! (the `FactorReuse` budget, residual cap and work fraction; default: `FactorReuse::default()`).
 //! `disk:RINGS` is the generated bumpy disk of `ecc-mesh`'s `setup_timing`
 //! example (6·RINGS² triangles; 409 rings ≈ 1M). `tet:FILE:arap|snh` is a
@@ -16,7 +18,7 @@
 use std::sync::Arc;
 use std::time::Instant;
 
-use ecc_fem::linear::{FactorReuse, LinearSystem};
+use ecc_fem::linear::{FactorReuse, LinearSystem, Preconditioner};
 use ecc_fem::param::{ParamOptions, prepare};
 use ecc_fem::{Elastic, LinearSolver, NewtonResult, NewtonSolver, Pattern, Term, Tet};
 use ecc_mesh::{TriMesh, disk_tri, read_tet_mesh, read_tri_mesh};
@@ -109,7 +111,22 @@ fn run(args: &[String]) -> Result<String, String> {
         return Err("usage: reuse MESH|disk:RINGS cholesky|pcg|auto [off|ITERS:TOL]".into());
     };
     let mut opts = ParamOptions::default();
-    opts.newton.linear_solver = match solver.as_str() {
+    let mut parts = solver.split(':');
+    let solver = parts.next().unwrap_or_default();
+    let precond = parts.next().unwrap_or("ic0");
+    if let Some(cap) = parts.next() {
+        let cap = cap
+            .parse()
+            .map_err(|_| format!("bad residual cap `{cap}`"))?;
+        opts.newton.auto_limits.pcg_rel_tol = cap;
+    }
+    opts.newton.auto_limits.preconditioner = match precond {
+        "jacobi" => Preconditioner::Jacobi,
+        "block_jacobi" => Preconditioner::BlockJacobi,
+        "ic0" => Preconditioner::Ic0,
+        s => return Err(format!("unknown preconditioner `{s}`")),
+    };
+    opts.newton.linear_solver = match solver {
         "cholesky" => LinearSolver::Cholesky,
         "pcg" => LinearSolver::Pcg,
         "auto" => LinearSolver::Auto,
@@ -178,8 +195,16 @@ fn line(
     let reused = r.records.iter().filter(|s| s.reused_factor).count();
     let cg: usize = r.records.iter().map(|s| s.cg_iterations).sum();
     let t = &r.times;
+    let ad = sys.adaptive();
+    let adaptive = format!(
+        "\"budget\":{},\"pcg_steps\":{},\"failed_attempts\":{},\"symbolic\":{}",
+        ad.map_or(0, |a| a.budget()),
+        ad.map_or(0, |a| a.pcg_steps()),
+        ad.map_or(0, |a| a.failed_attempts()),
+        r.symbolic_analyses,
+    );
     format!(
-        "{{\"mesh\":\"{m}\",\"elements\":{elements},\"solver\":\"{solver}\",\"used\":\"{:?}\",\"status\":\"{:?}\",\"iterations\":{},\"factorizations\":{},\"reused_steps\":{reused},\"cg_iterations\":{cg},\"newton_s\":{:.3},\"assembly_s\":{:.3},\"factor_s\":{:.3},\"solve_s\":{:.3},\"line_search_s\":{:.3},\"setup_s\":{setup:.3},\"wall_s\":{wall:.3},\"unknowns\":{},\"nnz\":{},\"factor_mb\":{:.1},\"factor_gflop\":{:.3}}}",
+        "{{\"mesh\":\"{m}\",\"elements\":{elements},\"solver\":\"{solver}\",\"used\":\"{:?}\",\"status\":\"{:?}\",\"iterations\":{},\"factorizations\":{},\"reused_steps\":{reused},\"cg_iterations\":{cg},\"newton_s\":{:.3},\"assembly_s\":{:.3},\"factor_s\":{:.3},\"solve_s\":{:.3},\"line_search_s\":{:.3},\"setup_s\":{setup:.3},\"wall_s\":{wall:.3},\"unknowns\":{},\"nnz\":{},\"factor_mb\":{:.1},\"factor_gflop\":{:.3},{adaptive}}}",
         r.linear_solver,
         r.status,
         r.iterations,

@@ -1,14 +1,16 @@
-//! Reusing a stale Cholesky factor as the preconditioner of CG
-//! (`linear::reuse`): fewer factorisations than Newton steps where the
-//! Hessian changes slowly, the same minimiser, and a factorisation whenever
-//! the stale factor is not good enough.
+//! Fewer factorisations: reusing a stale Cholesky factor as the
+//! preconditioner of CG (`linear::reuse`): fewer factorisations than Newton
+//! steps where the Hessian changes slowly, the same minimiser, and a
+//! factorisation whenever the stale factor is not good enough; the PCG
+//! preconditioners (`linear::precond`) and `Auto`'s PCG attempts under a
+//! work budget (`linear::adaptive`).
 
 mod common;
 
 use std::sync::Arc;
 
 use common::grid;
-use ecc_fem::linear::FactorReuse;
+use ecc_fem::linear::{AutoLimits, FactorReuse, Preconditioner};
 use ecc_fem::{Elastic, LinearSolver, NewtonParams, NewtonResult, NewtonSolver, Term, Tri};
 use ecc_runtime::energies::SymmetricDirichlet;
 
@@ -17,6 +19,18 @@ use ecc_runtime::energies::SymmetricDirichlet;
 /// ones barely change the Hessian. Returns the result and the distance of
 /// the answer from the rest shape (the exact minimiser).
 fn squeezed(reuse: FactorReuse, tol: f64) -> (NewtonResult, f64) {
+    let params = NewtonParams {
+        tol_abs: tol,
+        linear_solver: LinearSolver::Cholesky,
+        factor_reuse: reuse,
+        ..Default::default()
+    };
+    let (r, err, _) = squeezed_with(params);
+    (r, err)
+}
+
+/// [`squeezed`] with any Newton parameters; also returns the answer.
+fn squeezed_with(params: NewtonParams) -> (NewtonResult, f64, Vec<[f64; 2]>) {
     let m = 16;
     let (rest, tris) = grid(m);
     let w = m + 1;
@@ -39,12 +53,6 @@ fn squeezed(reuse: FactorReuse, tol: f64) -> (NewtonResult, f64) {
     let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(
         Elastic::<_, Tri>::planar(Arc::new(SymmetricDirichlet), &rest, &tris).unwrap(),
     )];
-    let params = NewtonParams {
-        tol_abs: tol,
-        linear_solver: LinearSolver::Cholesky,
-        factor_reuse: reuse,
-        ..Default::default()
-    };
     let mut solver = NewtonSolver::new(rest.len(), terms, &boundary, params).unwrap();
     let r = solver.solve(&mut x).unwrap();
     let err = x
@@ -52,7 +60,7 @@ fn squeezed(reuse: FactorReuse, tol: f64) -> (NewtonResult, f64) {
         .zip(&rest)
         .map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()))
         .fold(0.0, f64::max);
-    (r, err)
+    (r, err, x)
 }
 
 /// Reuse bounded by the iteration budget only (the cost bound of the
@@ -151,4 +159,115 @@ fn no_reuse_where_factorising_is_cheap_or_by_default() {
         assert_eq!(r.iterations, off.iterations);
         assert_eq!(r.numeric_factorizations, off.numeric_factorizations);
     }
+}
+
+/// `linear = "pcg"` with a solver's preconditioner, to 1e-8.
+fn pcg_with(preconditioner: Preconditioner) -> NewtonResult {
+    let params = NewtonParams {
+        tol_abs: 1e-8,
+        linear_solver: LinearSolver::Pcg,
+        auto_limits: AutoLimits {
+            preconditioner,
+            ..AutoLimits::default()
+        },
+        ..Default::default()
+    };
+    let (r, err, _) = squeezed_with(params);
+    assert!(
+        r.converged() && err < 1e-6,
+        "{preconditioner:?}: {:?}, {err}",
+        r.status
+    );
+    r
+}
+
+fn cg_total(r: &NewtonResult) -> usize {
+    r.records.iter().map(|s| s.cg_iterations).sum()
+}
+
+/// On the SD Hessians of the squeezed grid IC(0) needs less than half the
+/// CG iterations of Jacobi and of block-Jacobi for the same minimiser
+/// (block-Jacobi is not better than Jacobi on every mesh: 296 vs 259 here).
+#[test]
+fn ic0_needs_fewer_cg_iterations_than_jacobi_and_block_jacobi() {
+    let jacobi = cg_total(&pcg_with(Preconditioner::Jacobi));
+    let block = cg_total(&pcg_with(Preconditioner::BlockJacobi));
+    let ic0 = cg_total(&pcg_with(Preconditioner::Ic0));
+    println!("CG iterations: Jacobi {jacobi}, block-Jacobi {block}, IC(0) {ic0}");
+    assert!(
+        2 * ic0 < jacobi && 2 * ic0 < block,
+        "{ic0} vs {jacobi}, {block}"
+    );
+    assert_eq!(Preconditioner::default(), Preconditioner::Ic0);
+}
+
+/// `Auto` with the adaptive backend forced (ρ = ∞) and the limits `limits`.
+fn auto_with(limits: AutoLimits) -> (NewtonResult, Vec<[f64; 2]>) {
+    let params = NewtonParams {
+        tol_abs: 1e-8,
+        linear_solver: LinearSolver::Auto,
+        auto_limits: AutoLimits {
+            pcg_trial_ratio: f64::INFINITY,
+            ..limits
+        },
+        ..Default::default()
+    };
+    let (r, err, x) = squeezed_with(params);
+    assert!(
+        r.converged() && err < 1e-6,
+        "{limits:?}: {:?}, {err}",
+        r.status
+    );
+    (r, x)
+}
+
+/// A factorisation worth ∞ CG iterations (κ → 0) and no residual cap: every
+/// PCG attempt is accepted, nothing is factorised, and the iterates are
+/// exactly those of `linear = "pcg"` (same preconditioner, tolerance, start).
+#[test]
+fn auto_whose_pcg_attempts_all_succeed_is_pcg() {
+    let (auto, x_auto) = auto_with(AutoLimits {
+        factor_speedup: 1e-12,
+        pcg_rel_tol: 1.0,
+        ..AutoLimits::default()
+    });
+    let params = NewtonParams {
+        tol_abs: 1e-8,
+        linear_solver: LinearSolver::Pcg,
+        ..Default::default()
+    };
+    let (pcg, _, x_pcg) = squeezed_with(params);
+    assert_eq!(auto.numeric_factorizations, 0);
+    assert_eq!(auto.symbolic_analyses, 1);
+    assert_eq!(auto.linear_solver, LinearSolver::Pcg);
+    assert_eq!(auto.iterations, pcg.iterations);
+    assert_eq!(cg_total(&auto), cg_total(&pcg));
+    assert_eq!(x_auto, x_pcg);
+}
+
+/// A residual cap no CG run can meet: every attempt that is made fails
+/// (by its budget or the give-up rule), each failure is followed by one
+/// factorisation of that step and a wait of 2^m steps, so there are at most ⌊log₂(N+1)⌋ failed attempts
+/// (bound (2) of `linear::adaptive`), every step factorises once (no shift
+/// retries on this SPD problem), and the iterates are Cholesky's.
+#[test]
+fn auto_whose_pcg_attempts_fail_falls_back_with_bounded_waste() {
+    let (off, _) = squeezed(FactorReuse::OFF, 1e-8);
+    let (auto, _) = auto_with(AutoLimits {
+        factor_speedup: 1e-3,
+        pcg_rel_tol: 1e-300,
+        ..AutoLimits::default()
+    });
+    let n = auto.iterations;
+    assert_eq!(n, off.iterations);
+    assert_eq!(auto.numeric_factorizations, n);
+    assert!(auto.records.iter().all(|s| s.factorizations == 1));
+    assert_eq!(auto.linear_solver, LinearSolver::Cholesky);
+    let attempts = auto.records.iter().filter(|s| s.cg_iterations > 0).count();
+    assert!(attempts >= 1, "the first step tries PCG");
+    assert!(
+        attempts <= (n + 1).ilog2() as usize,
+        "{attempts} failed attempts in {n} steps"
+    );
+    assert_eq!(auto.records[0].cg_iterations.min(1), 1);
 }

@@ -36,10 +36,23 @@
 //! disk (W ratio 2.5) PCG was 3.5× faster: the model does not see that
 //! a near-optimal start needs few CG iterations.
 //!
-//! `Auto` keeps Cholesky when its factor fits in `max_factor_bytes`, needs at
-//! most `max_factor_flops`, and W_chol ≤ W_pcg.
+//! `Auto` runs PCG alone when the factor does not fit in `max_factor_bytes`
+//! or needs more than `max_factor_flops`; otherwise Cholesky when the model
+//! is sure of it (W_pcg > ρ·W_chol, ρ = `pcg_trial_ratio`), and else the
+//! adaptive backend of [`super::adaptive`], which tries PCG under the
+//! counted budget
+//!
+//!   b = ⌊(W_f − W_s) / W_it⌋,  W_f = W_chol,
+//!   W_it = 4·nnz − 2n + 10n + 2·W_M                                     (3)
+//!
+//! (W_M, W_s: application and setup work of the preconditioner, W_M
+//! counted twice: its triangular solves are sequential while the product
+//! runs on both cores) and falls
+//! back to Cholesky, so a wrong guess costs a bounded amount.
 
 use serde::{Deserialize, Serialize};
+
+use super::precond::Preconditioner;
 
 /// When `Auto` prefers PCG over Cholesky (module docs, eqs. (1)–(2)).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -57,6 +70,30 @@ pub struct AutoLimits {
     pub cg_per_root_3d: f64,
     /// π: Newton iterations with PCG over those with Cholesky.
     pub pcg_newton_penalty: f64,
+    /// ρ: `Auto` tries PCG adaptively when W_pcg ≤ ρ·W_chol (module docs);
+    /// above, Cholesky alone.
+    #[serde(default = "default_trial_ratio")]
+    pub pcg_trial_ratio: f64,
+    /// The preconditioner of the PCG path (`Pcg` and `Auto`'s PCG steps).
+    #[serde(default)]
+    pub preconditioner: Preconditioner,
+    /// Upper bound on the relative residual of `Auto`'s PCG steps (the
+    /// forcing term applies when tighter): looser steps lengthened the
+    /// Newton run (docs/benchmarks/reuse.md).
+    #[serde(default = "default_pcg_rel_tol")]
+    pub pcg_rel_tol: f64,
+}
+
+fn default_pcg_rel_tol() -> f64 {
+    AutoLimits::default().pcg_rel_tol
+}
+
+/// Weight of the preconditioner's work in eq. (3): its triangular solves
+/// run on one thread, the product and vector operations on two.
+const SEQUENTIAL: f64 = 2.0;
+
+fn default_trial_ratio() -> f64 {
+    AutoLimits::default().pcg_trial_ratio
 }
 
 impl Default for AutoLimits {
@@ -68,6 +105,9 @@ impl Default for AutoLimits {
             cg_per_root_2d: 1.0,
             cg_per_root_3d: 6.0,
             pcg_newton_penalty: 1.5,
+            pcg_trial_ratio: 4.0,
+            preconditioner: Preconditioner::default(),
+            pcg_rel_tol: 1e-2,
         }
     }
 }
@@ -108,11 +148,39 @@ impl AutoLimits {
         self.pcg_newton_penalty * iterations.max(1.0) * per_iteration
     }
 
-    /// Whether `Auto` keeps Cholesky for a system of this size.
+    /// Whether a Cholesky factor of this size is allowed at all (bytes and
+    /// flop caps).
+    pub fn factor_fits(&self, s: &SystemSize) -> bool {
+        s.factor_bytes <= self.max_factor_bytes && s.factor_flops <= self.max_factor_flops
+    }
+
+    /// Whether the static model (1)–(2) prefers Cholesky for a system of this size.
     pub fn prefers_cholesky(&self, s: &SystemSize) -> bool {
-        s.factor_bytes <= self.max_factor_bytes
-            && s.factor_flops <= self.max_factor_flops
-            && self.cholesky_work(s) <= self.pcg_work(s)
+        self.factor_fits(s) && self.cholesky_work(s) <= self.pcg_work(s)
+    }
+
+    /// Whether `Auto` should try PCG adaptively: the factor fits and the
+    /// model is not sure of Cholesky (W_pcg ≤ ρ·W_chol).
+    pub fn tries_pcg(&self, s: &SystemSize) -> bool {
+        self.factor_fits(s) && self.pcg_work(s) <= self.pcg_trial_ratio * self.cholesky_work(s)
+    }
+
+    /// W_it of eq. (3): one PCG iteration with [`AutoLimits::preconditioner`].
+    pub fn pcg_iteration_work(&self, s: &SystemSize) -> f64 {
+        let n = s.unknowns as f64;
+        4.0 * s.nnz as f64 - 2.0 * n
+            + 10.0 * n
+            + SEQUENTIAL * self.preconditioner.apply_work(s.unknowns, s.nnz, s.dim)
+    }
+
+    /// The CG budget b of eq. (3) for a preconditioner setup of `setup_work`.
+    pub fn pcg_budget(&self, s: &SystemSize, setup_work: f64) -> usize {
+        let b = (self.cholesky_work(s) - setup_work) / self.pcg_iteration_work(s);
+        if b.is_finite() && b >= 1.0 {
+            b.min(u32::MAX as f64) as usize
+        } else {
+            0
+        }
     }
 }
 

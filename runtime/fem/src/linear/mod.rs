@@ -18,33 +18,38 @@
 //! preconditioned by the last numeric factor instead of factorising again
 //! ([`LinearSystem::solve_stale`], policy in [`reuse`]).
 
+pub mod adaptive;
 pub mod auto;
 pub mod cholesky;
 pub mod ordering;
 pub mod pcg;
+pub mod precond;
 pub mod reuse;
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::FemError;
 use crate::pattern::Pattern;
+use adaptive::{Adaptive, factorize_shifted};
 pub use auto::{AutoLimits, SystemSize};
-use cholesky::{CholeskyFactor, CholeskyParams, FactorizeError};
+use cholesky::{CholeskyFactor, CholeskyParams};
 use pcg::{Pcg, PcgInfo};
+pub use precond::Preconditioner;
 pub use reuse::FactorReuse;
 
 /// Which linear solver the Newton iteration uses.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum LinearSolver {
-    /// Cholesky when its factor fits in memory and its estimated cost per
-    /// Newton step is below PCG's ([`AutoLimits`], model in [`auto`]),
-    /// PCG otherwise; decided from the symbolic analysis, done once per
-    /// pattern.
+    /// From the symbolic analysis (once per pattern, model in [`auto`]):
+    /// PCG when the Cholesky factor does not fit, Cholesky when the model
+    /// is sure it is cheaper, otherwise PCG tried at every step under a
+    /// counted work budget with Cholesky as the fallback ([`adaptive`]).
     #[default]
     Auto,
     /// Sparse Cholesky (faer), symbolic once, numeric every step.
     Cholesky,
-    /// Jacobi-preconditioned conjugate gradients (inexact Newton).
+    /// Preconditioned conjugate gradients (inexact Newton), preconditioner
+    /// [`AutoLimits::preconditioner`] (default IC(0)).
     Pcg,
 }
 
@@ -75,6 +80,9 @@ pub struct SolveInfo {
     pub relative_residual: f64,
     /// CG stopped on non-positive curvature (PCG only).
     pub negative_curvature: bool,
+    /// Numeric factorisations made by the solve itself (`Auto` after a
+    /// failed PCG attempt; the others factorise in `prepare`).
+    pub factorizations: usize,
 }
 
 impl SolveInfo {
@@ -83,6 +91,7 @@ impl SolveInfo {
             iterations: info.iterations,
             relative_residual: info.relative_residual,
             negative_curvature: info.negative_curvature,
+            factorizations: 0,
         }
     }
 }
@@ -90,6 +99,7 @@ impl SolveInfo {
 enum Backend {
     Cholesky(Box<CholeskyFactor>),
     Pcg(Box<Pcg>),
+    Adaptive(Box<Adaptive>),
 }
 
 /// The Newton system for one pattern: backend state reused across iterations.
@@ -144,7 +154,12 @@ impl LinearSystem {
                 cholesky.ordering.name()
             )));
         }
-        let pcg = || Backend::Pcg(Box::new(Pcg::new(pattern)));
+        let pcg = || {
+            Backend::Pcg(Box::new(Pcg::with_preconditioner(
+                pattern,
+                limits.preconditioner,
+            )))
+        };
         let mut discarded_analyses = 0;
         let (backend, analysis) = match choice {
             LinearSolver::Pcg => (pcg(), None),
@@ -163,7 +178,14 @@ impl LinearSystem {
                         factor_bytes: a.0,
                         factor_flops: a.1,
                     };
-                    if limits.prefers_cholesky(&size) {
+                    if limits.tries_pcg(&size) {
+                        let setup = limits.preconditioner.setup_work(pattern);
+                        let budget = limits.pcg_budget(&size, setup);
+                        let p = limits.preconditioner;
+                        let cap = limits.pcg_rel_tol;
+                        let ad = Adaptive::new(pattern, Box::new(f), p, budget, cap);
+                        (Backend::Adaptive(Box::new(ad)), Some(a))
+                    } else if limits.factor_fits(&size) {
                         (Backend::Cholesky(Box::new(f)), Some(a))
                     } else {
                         drop(f);
@@ -184,11 +206,22 @@ impl LinearSystem {
         })
     }
 
-    /// The backend in use (`Cholesky` or `Pcg`, never `Auto`).
+    /// The backend in use (`Cholesky` or `Pcg`, never `Auto`); for the
+    /// adaptive backend of `Auto`, the one that solved the last step
+    /// (`Cholesky` before the first).
     pub fn kind(&self) -> LinearSolver {
-        match self.backend {
+        match &self.backend {
             Backend::Cholesky(_) => LinearSolver::Cholesky,
             Backend::Pcg(_) => LinearSolver::Pcg,
+            Backend::Adaptive(a) => a.last_kind(),
+        }
+    }
+
+    /// `Auto`'s adaptive backend, if that is the backend (budget, attempts).
+    pub fn adaptive(&self) -> Option<&Adaptive> {
+        match &self.backend {
+            Backend::Adaptive(a) => Some(a),
+            _ => None,
         }
     }
 
@@ -208,10 +241,11 @@ impl LinearSystem {
         self.discarded_analyses + self.cholesky().map_or(0, CholeskyFactor::symbolic_analyses)
     }
 
-    /// The Cholesky factor (for its counters), if that is the backend.
+    /// The Cholesky factor (for its counters), if the backend has one.
     pub fn cholesky(&self) -> Option<&CholeskyFactor> {
         match &self.backend {
             Backend::Cholesky(f) => Some(f),
+            Backend::Adaptive(a) => Some(a.factor()),
             Backend::Pcg(_) => None,
         }
     }
@@ -231,47 +265,24 @@ impl LinearSystem {
             return Ok(PrepareInfo::default());
         }
         let mean_diag = mean_diagonal(pattern, values);
-        let mut shift = base_shift.max(0.0) * mean_diag;
-        let mut applied = 0.0;
-        let apply = |values: &mut [f64], target: f64, applied: &mut f64| {
-            let delta = target - *applied;
-            if delta != 0.0 {
-                for j in 0..n {
-                    values[pattern.diag_slot(j)] += delta;
-                }
-            }
-            *applied = target;
+        let shift = base_shift.max(0.0) * mean_diag;
+        shift_diagonal(pattern, values, shift);
+        let info = |(shift, factorizations): (f64, usize)| PrepareInfo {
+            shift,
+            relative_shift: shift / mean_diag,
+            factorizations,
         };
         match &mut self.backend {
-            Backend::Pcg(_) => {
-                apply(values, shift, &mut applied);
-                Ok(PrepareInfo {
-                    shift,
-                    relative_shift: shift / mean_diag,
-                    factorizations: 0,
-                })
-            }
+            Backend::Pcg(_) => Ok(info((shift, 0))),
             Backend::Cholesky(f) => {
                 self.factored = false;
-                for attempt in 1..=max_attempts.max(1) {
-                    apply(values, shift, &mut applied);
-                    match f.factorize(pattern, values) {
-                        Ok(()) => {
-                            self.factored = true;
-                            return Ok(PrepareInfo {
-                                shift,
-                                relative_shift: shift / mean_diag,
-                                factorizations: attempt,
-                            });
-                        }
-                        // a new pattern that cannot be analysed: no shift helps
-                        Err(FactorizeError::Symbolic(_)) => break,
-                        Err(FactorizeError::NotPositiveDefinite(_)) => {}
-                    }
-                    shift = (100.0 * shift).max(1e-10 * mean_diag);
-                }
-                Err(FactorizationFailed { shift: applied })
+                let done = factorize_shifted(f, pattern, values, shift, mean_diag, max_attempts)?;
+                self.factored = true;
+                Ok(info(done))
             }
+            Backend::Adaptive(a) => a
+                .prepare(pattern, values, shift, mean_diag, max_attempts)
+                .map(info),
         }
     }
 
@@ -296,6 +307,7 @@ impl LinearSystem {
             Backend::Pcg(p) => {
                 SolveInfo::from_pcg(p.solve(pattern, values, rhs, out, rel_tol, max_iters))
             }
+            Backend::Adaptive(a) => a.solve(pattern, values, rhs, out, rel_tol, max_iters),
         }
     }
 

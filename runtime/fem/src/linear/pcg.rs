@@ -1,15 +1,17 @@
-//! Jacobi-preconditioned conjugate gradients on the assembled Hessian.
+//! Preconditioned conjugate gradients on the assembled Hessian.
 //!
 //! For systems whose Cholesky factor would not fit (large tet meshes, as
-//! Smith et al. 2019 did in 3D). Uses the same upper-CSC values as the direct
-//! path; a symmetric row index (built once) turns y = H x into a parallel
-//! gather over rows. Preconditioner M = diag(H). Starting from x = 0 every CG
+//! Smith et al. 2019 did in 3D) or costs more than CG. Uses the same
+//! upper-CSC values as the direct path; a symmetric row index (built once)
+//! turns y = H x into a parallel gather over rows. The preconditioner M is
+//! one of [`Preconditioner`] (default IC(0), [`super::precond`]). Starting from x = 0 every CG
 //! iterate is a descent direction for a positive definite H, so an inexact
 //! solve (stopped at a relative residual η) is still a valid Newton-type step.
 //! All vectors are preallocated.
 
 use rayon::prelude::*;
 
+use super::precond::{Preconditioner, State};
 use crate::parallel::dot;
 use crate::pattern::Pattern;
 
@@ -29,7 +31,9 @@ pub struct Pcg {
     /// symmetric row structure: row i → (slot, column) pairs
     row_ptr: Vec<usize>,
     row_ent: Vec<(u32, u32)>,
-    inv_diag: Vec<f64>,
+    kind: Preconditioner,
+    /// Built on the first [`Pcg::solve`] (a stale-factor CG never needs it).
+    precond: Option<State>,
     r: Vec<f64>,
     z: Vec<f64>,
     p: Vec<f64>,
@@ -38,8 +42,14 @@ pub struct Pcg {
 }
 
 impl Pcg {
-    /// Build the symmetric row index of `pattern` and allocate the vectors.
+    /// [`Pcg::with_preconditioner`] with the default preconditioner.
     pub fn new(pattern: &Pattern) -> Self {
+        Self::with_preconditioner(pattern, Preconditioner::default())
+    }
+
+    /// Build the symmetric row index of `pattern` and allocate the vectors;
+    /// [`Pcg::solve`] preconditions with `kind`.
+    pub fn with_preconditioner(pattern: &Pattern, kind: Preconditioner) -> Self {
         let n = pattern.n();
         let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         let mut row_ptr = vec![0usize; n + 1];
@@ -70,7 +80,8 @@ impl Pcg {
         Pcg {
             row_ptr,
             row_ent,
-            inv_diag: vec![0.0; n],
+            kind,
+            precond: None,
             r: vec![0.0; n],
             z: vec![0.0; n],
             p: vec![0.0; n],
@@ -84,10 +95,15 @@ impl Pcg {
         sym_matvec(&self.row_ptr, &self.row_ent, values, x, y);
     }
 
+    /// The preconditioner of [`Pcg::solve`].
+    pub fn preconditioner(&self) -> Preconditioner {
+        self.kind
+    }
+
     /// Solve H x = b to ‖r‖ ≤ `rel_tol`·‖b‖ (or `max_iters`), x overwritten,
-    /// starting from 0, preconditioned by M = diag(H). `values` must be
-    /// positive on the diagonal (a non-positive diagonal entry is
-    /// preconditioned by 1).
+    /// starting from 0, preconditioned by M built from `values` (see
+    /// [`super::precond`]: always positive definite, also for a
+    /// non-positive diagonal entry).
     pub fn solve(
         &mut self,
         pattern: &Pattern,
@@ -97,20 +113,52 @@ impl Pcg {
         rel_tol: f64,
         max_iters: usize,
     ) -> PcgInfo {
-        let n = pattern.n();
-        for j in 0..n {
-            let d = values[pattern.diag_slot(j)];
-            self.inv_diag[j] = if d > 0.0 && d.is_finite() {
-                1.0 / d
-            } else {
-                1.0
-            };
-        }
-        let inv_diag = std::mem::take(&mut self.inv_diag);
-        let info = self.solve_preconditioned(values, b, x, rel_tol, max_iters, |r, z| {
-            zip_mul(z, &inv_diag, r)
-        });
-        self.inv_diag = inv_diag;
+        self.solve_budgeted(pattern, values, b, x, rel_tol, max_iters, false)
+    }
+
+    /// [`Pcg::solve`] within a budget of `max_iters` iterations that, with
+    /// `give_up`, stops as soon as the budget looks out of reach: from
+    /// iteration k₀ = max(5, ⌈max_iters/4⌉) on, when the residual ratio
+    /// ρ_k = ‖r_k‖/‖b‖ extrapolated linearly in log scale,
+    ///
+    ///   k·ln(rel_tol)/ln(ρ_k) > max_iters,                                (1)
+    ///
+    /// (or ρ_k ≥ 1). A stop by (1) returns ρ_k > `rel_tol`: the caller
+    /// treats it as a failed attempt, having spent ≈ k₀ instead of
+    /// `max_iters` iterations. Counted, not timed: deterministic.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_budgeted(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        b: &[f64],
+        x: &mut [f64],
+        rel_tol: f64,
+        max_iters: usize,
+        give_up: bool,
+    ) -> PcgInfo {
+        let kind = self.kind;
+        let mut m = self
+            .precond
+            .take()
+            .unwrap_or_else(|| State::new(kind, pattern));
+        m.setup(pattern, values);
+        let k0 = 5.max(max_iters.div_ceil(4));
+        let hopeless = |k: usize, rho: f64| {
+            give_up
+                && k >= k0
+                && (rho >= 1.0 || k as f64 * rel_tol.ln() / rho.ln() > max_iters as f64)
+        };
+        let info = self.cg(
+            values,
+            b,
+            x,
+            rel_tol,
+            max_iters,
+            |r, z| m.apply(r, z),
+            hopeless,
+        );
+        self.precond = Some(m);
         info
     }
 
@@ -126,7 +174,22 @@ impl Pcg {
         x: &mut [f64],
         rel_tol: f64,
         max_iters: usize,
+        precond: impl FnMut(&[f64], &mut [f64]),
+    ) -> PcgInfo {
+        self.cg(values, b, x, rel_tol, max_iters, precond, |_, _| false)
+    }
+
+    /// The CG loop; `hopeless(k, ‖r_k‖/‖b‖)` stops it early.
+    #[allow(clippy::too_many_arguments)]
+    fn cg(
+        &mut self,
+        values: &[f64],
+        b: &[f64],
+        x: &mut [f64],
+        rel_tol: f64,
+        max_iters: usize,
         mut precond: impl FnMut(&[f64], &mut [f64]),
+        hopeless: impl Fn(usize, f64) -> bool,
     ) -> PcgInfo {
         x.fill(0.0);
         self.r.copy_from_slice(b);
@@ -160,6 +223,9 @@ impl Pcg {
             axpy(&mut self.r, -alpha, &self.q);
             rnorm = dot(&self.r, &self.r, &mut self.partials).sqrt();
             it += 1;
+            if rnorm > rel_tol * bnorm && hopeless(it, rnorm / bnorm) {
+                break;
+            }
             precond(&self.r, &mut self.z);
             let rz_new = dot(&self.r, &self.z, &mut self.partials);
             let beta = rz_new / rz;
@@ -196,13 +262,6 @@ fn axpy(y: &mut [f64], a: f64, x: &[f64]) {
         .zip(x)
         .with_min_len(4096)
         .for_each(|(y, x)| *y += a * x);
-}
-
-fn zip_mul(out: &mut [f64], a: &[f64], b: &[f64]) {
-    out.par_iter_mut()
-        .zip(a.par_iter().zip(b))
-        .with_min_len(4096)
-        .for_each(|(o, (a, b))| *o = a * b);
 }
 
 #[cfg(test)]

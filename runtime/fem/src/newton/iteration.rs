@@ -386,7 +386,7 @@ impl<const D: usize> NewtonSolver<D> {
             filter: format!("{:?}", a.used_filter),
             rho,
             shift: dir.prep.shift,
-            factorizations: dir.prep.factorizations,
+            factorizations: dir.prep.factorizations + dir.solve.factorizations,
             cg_iterations: dir.solve.iterations,
             reused_factor: dir.reused,
             line_search_evals: step.acc.evals,
