@@ -15,7 +15,7 @@
 //!
 //! `ordering MESH|disk:RINGS REPEATS --split [ORDERING]` (run with
 //! RAYON_NUM_THREADS=2) compares instead, per factorisation, the plain
-//! sequential factor (ORDERING, default `amd`) on one thread (a 1-thread pool)
+//! sequential factor (ORDERING, default: the default ordering) on one thread (a 1-thread pool)
 //! and in the 2-thread pool with the two-way split ([`ThreadPolicy::Split`])
 //! in the 2-thread pool, and the split in the 1-thread pool (its halves one
 //! after the other): best of REPEATS, the four alternating. From the last,
@@ -208,7 +208,7 @@ fn main() {
         let ordering = args
             .get(at + 1)
             .and_then(|o| FillOrdering::from_name(o))
-            .unwrap_or(FillOrdering::Amd);
+            .unwrap_or_default();
         split_row(spec, &p, &v, repeats, ordering);
         return;
     }

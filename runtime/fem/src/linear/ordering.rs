@@ -9,8 +9,9 @@
 //! supernode column block per vertex at least).
 //!
 //! * [`FillOrdering::Amd`]: faer's approximate minimum degree on the full
-//!   unknown graph (the default, see [`FillOrdering::default`]).
-//! * [`FillOrdering::BlockAmd`]: the same AMD on the vertex graph, expanded.
+//!   unknown graph.
+//! * [`FillOrdering::BlockAmd`]: the same AMD on the vertex graph, expanded
+//!   (the default, see [`FillOrdering::default`]).
 //! * [`FillOrdering::Metis`]: METIS nested dissection (`METIS_NodeND`) on the
 //!   vertex graph, vertex weights = unknowns per vertex; needs the `metis`
 //!   cargo feature (METIS is compiled from source by cargo, a C compiler is
@@ -43,13 +44,12 @@ pub enum FillOrdering {
 }
 
 impl Default for FillOrdering {
-    /// faer's AMD, as before these choices existed. Block AMD has the same
-    /// fill at about half the ordering time on large meshes but rounds the
-    /// Newton steps differently (a changed trajectory); METIS has fewer
-    /// flops on the larger meshes but twice as many, smaller supernodes and
-    /// was not faster with faer (docs/benchmarks/ordering.md).
+    /// Block AMD: the fill of faer's AMD on these meshes at about half the
+    /// ordering time (docs/benchmarks/ordering.md). METIS has fewer flops on
+    /// the larger meshes but twice as many, smaller supernodes and was not
+    /// faster with faer.
     fn default() -> Self {
-        FillOrdering::Amd
+        FillOrdering::BlockAmd
     }
 }
 

@@ -216,6 +216,15 @@ impl<const D: usize> NewtonSolver<D> {
                 break status;
             }
         };
+        // The reported energy is that of the returned positions as
+        // [`NewtonSolver::energy`] computes it: the assembly pass that set
+        // `last` sums the same element energies in another grouping (with the
+        // gradient), so its total can differ in the last bits.
+        if state.last.0.is_finite() {
+            state.last.0 = self
+                .assembler
+                .energy(&self.terms, x, self.params.energy_scale);
+        }
         state.times.total = t_start.elapsed().as_secs_f64();
         Ok(self.result(status, state))
     }

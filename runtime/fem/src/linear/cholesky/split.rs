@@ -371,9 +371,6 @@ impl SplitFactor {
         let Some(cut) = split(sn, force) else {
             return Ok(None);
         };
-        if std::env::var_os("ECC_SPLIT_DEBUG").is_some() {
-            eprintln!("split: critical {:.3e}", cut.critical);
-        }
         let old = |new: usize| symbolic.perm().map_or(new, |p| p.arrays().0[new]);
         let columns = |part: Part| -> Vec<usize> {
             (0..sn.n_supernodes())

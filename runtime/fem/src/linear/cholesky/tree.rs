@@ -110,12 +110,6 @@ pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Optio
         let (assigned, bins) = two_bins(&forest, &subtree);
         if bins[0] > 0.0 && bins[1] > 0.0 {
             let cost = bins[0].max(bins[1]) + DENSE_WEIGHT * (k_cols as f64).powi(3);
-            if std::env::var_os("ECC_SPLIT_DEBUG").is_some() {
-                eprintln!(
-                    "tree: k {k_cols} bins {:.3e} {:.3e} cost {cost:.3e}",
-                    bins[0], bins[1]
-                );
-            }
             if best.as_ref().is_none_or(|b| cost < b.0) {
                 best = Some((cost, separator.clone(), assigned));
             }
