@@ -476,56 +476,28 @@ mod tests {
     #[test]
     fn invalid_stencils_are_reported() {
         let dofs = DofMap::all_free(3, 2).unwrap();
-        let bad = [0usize, 1, 1];
-        let e = build(
-            &[StencilSet {
+        let err = |arity: usize, stencils: &[usize]| {
+            let set = StencilSet {
                 name: "t",
-                arity: 3,
-                stencils: &bad,
-            }],
-            &dofs,
-        )
-        .unwrap_err();
+                arity,
+                stencils,
+            };
+            build(&[set], &dofs).unwrap_err()
+        };
         assert!(matches!(
-            e,
+            err(3, &[0, 1, 1]),
             FemError::RepeatedVertex {
                 stencil: 0,
                 vertex: 1,
                 ..
             }
         ));
-        let bad = [0usize, 1, 7];
-        let e = build(
-            &[StencilSet {
-                name: "t",
-                arity: 3,
-                stencils: &bad,
-            }],
-            &dofs,
-        )
-        .unwrap_err();
-        assert!(matches!(e, FemError::VertexOutOfRange { vertex: 7, .. }));
-        let bad = [0usize, 1];
-        let e = build(
-            &[StencilSet {
-                name: "t",
-                arity: 3,
-                stencils: &bad,
-            }],
-            &dofs,
-        )
-        .unwrap_err();
-        assert!(matches!(e, FemError::BadStencilList { .. }));
-        let e = build(
-            &[StencilSet {
-                name: "t",
-                arity: 7,
-                stencils: &[],
-            }],
-            &dofs,
-        )
-        .unwrap_err();
-        assert!(matches!(e, FemError::StencilTooLarge { .. }));
+        assert!(matches!(
+            err(3, &[0, 1, 7]),
+            FemError::VertexOutOfRange { vertex: 7, .. }
+        ));
+        assert!(matches!(err(3, &[0, 1]), FemError::BadStencilList { .. }));
+        assert!(matches!(err(7, &[]), FemError::StencilTooLarge { .. }));
     }
 
     #[test]
