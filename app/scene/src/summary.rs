@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use ecc_fem::TimeSplit;
+use ecc_fem::{NewtonResult, TimeSplit};
 use serde::{Deserialize, Serialize};
 
 use crate::counters::CounterValues;
@@ -42,6 +42,52 @@ pub struct SolvePoint {
     pub seconds: f64,
 }
 
+/// Linear-solver work (`linear` of a solve and of the run): what the
+/// Newton systems cost in factorisations and CG iterations.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct LinearWork {
+    /// Symbolic analyses (orderings + elimination trees) of the Cholesky
+    /// factor, including one `auto` ran and discarded for PCG. Run total
+    /// only (0 in a solve's entry: the analysis belongs to the solver).
+    pub symbolic_analyses: usize,
+    /// Numeric Cholesky factorisations, shift retries included (≤ Newton
+    /// iterations × `shift_attempts` plus one per failed PCG attempt of
+    /// `auto`; 0 for `pcg`).
+    pub numeric_factorizations: usize,
+    /// CG iterations (PCG steps, `auto`'s PCG attempts, stale-factor CG).
+    pub cg_iterations: usize,
+    /// Newton steps solved with CG preconditioned by a stale factor.
+    pub reused_factor_steps: usize,
+}
+
+impl LinearWork {
+    /// The factorisations, CG iterations and reused steps of one solve's
+    /// accepted Newton steps (`symbolic_analyses` 0: see the field).
+    pub fn of_solve(r: &NewtonResult) -> Self {
+        LinearWork {
+            symbolic_analyses: 0,
+            numeric_factorizations: r.records.iter().map(|s| s.factorizations).sum(),
+            cg_iterations: r.records.iter().map(|s| s.cg_iterations).sum(),
+            reused_factor_steps: r.records.iter().filter(|s| s.reused_factor).count(),
+        }
+    }
+
+    /// The run's totals: the solves' sums, and the symbolic analyses of
+    /// the solver (`NewtonResult::symbolic_analyses` of the last solve).
+    pub fn of_run(solves: &[SolveLog], symbolic_analyses: usize) -> Self {
+        let mut w = LinearWork {
+            symbolic_analyses,
+            ..LinearWork::default()
+        };
+        for s in solves {
+            w.numeric_factorizations += s.linear.numeric_factorizations;
+            w.cg_iterations += s.linear.cg_iterations;
+            w.reused_factor_steps += s.linear.reused_factor_steps;
+        }
+        w
+    }
+}
+
 /// One Newton solve.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SolveLog {
@@ -55,6 +101,9 @@ pub struct SolveLog {
     pub points: Vec<SolvePoint>,
     /// Assembly / factorisation / solve / line-search seconds.
     pub times: TimeSplit,
+    /// Factorisations and CG iterations of this solve.
+    #[serde(default)]
+    pub linear: LinearWork,
 }
 
 /// One output frame.
@@ -184,6 +233,10 @@ pub struct Summary {
     pub solves: Vec<SolveLog>,
     /// Newton iterations over the run.
     pub newton_iterations: usize,
+    /// Linear-solver work over the run (symbolic analyses, numeric
+    /// factorisations, CG iterations, reused-factor steps).
+    #[serde(default)]
+    pub linear: LinearWork,
     /// Frames whose solves all converged.
     pub converged_frames: usize,
     /// Why the run stopped early, if it did.
@@ -271,6 +324,11 @@ impl Summary {
         s.push_str(&format!(
             "newton: {} iterations, {:.3} s (assembly {:.3}, factor {:.3}, solve {:.3}, line search {:.3})\n",
             self.newton_iterations, n.total, n.assembly, n.factor, n.solve, n.line_search
+        ));
+        let l = &self.linear;
+        s.push_str(&format!(
+            "linear: {} symbolic analyses, {} numeric factorisations, {} CG iterations, {} reused-factor steps\n",
+            l.symbolic_analyses, l.numeric_factorizations, l.cg_iterations, l.reused_factor_steps
         ));
         s.push_str(&format!(
             "setup {:.3} s, output {:.3} s, wall {:.3} s\n",

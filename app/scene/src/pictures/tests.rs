@@ -151,6 +151,7 @@ fn convergence_plot_has_curves_labels_and_tolerance() {
             })
             .collect(),
         times: Default::default(),
+        linear: Default::default(),
     };
     let solves: Vec<SolveLog> = (1..=3).map(|f| solve(f, 6 + f)).collect();
     let p = convergence(&solves, 1e-6, "demo", (640, 360));

@@ -16,7 +16,7 @@ use crate::counters::Counters;
 use crate::error::SceneError;
 use crate::output::OutputDir;
 use crate::pictures;
-use crate::summary::{EnergyStats, FrameStats, HandleStats, RunStatus, Summary};
+use crate::summary::{EnergyStats, FrameStats, HandleStats, LinearWork, RunStatus, Summary};
 
 /// Which frames to keep for the picture: up to `keep`, evenly spread, always the last.
 fn keep_for_picture(frame: usize, frames: usize, keep: usize) -> bool {
@@ -194,6 +194,10 @@ fn summarize<const D: usize>(
             })
             .collect(),
         newton_iterations: stats.iter().map(|s| s.iterations).sum(),
+        linear: LinearWork::of_run(
+            &engine.journal.log,
+            engine.solver.linear_system().symbolic_analyses(),
+        ),
         converged_frames: stats.iter().skip(1).filter(|s| s.converged).count(),
         status: RunStatus::of(
             engine.journal.stopped.is_some(),

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use ecc_fem::{FemError, IterationRecord, NewtonResult, NewtonStatus, TermTiming};
 
-use crate::summary::{SolveLog, SolvePoint};
+use crate::summary::{LinearWork, SolveLog, SolvePoint};
 
 /// Every solve of a run so far.
 #[derive(Debug, Default)]
@@ -83,6 +83,7 @@ impl Journal {
             iterations: result.iterations,
             points: rec.points,
             times: result.times,
+            linear: LinearWork::of_solve(result),
         });
         if let Some(why) = stop_reason(&result.status, frame) {
             self.stopped = Some(why);

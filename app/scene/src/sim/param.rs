@@ -24,7 +24,7 @@ use crate::error::SceneError;
 use crate::output::OutputDir;
 use crate::pictures;
 use crate::spec::{FrameFormat, TutteKind};
-use crate::summary::{FrameStats, RunStatus, SolveLog, SolvePoint, Summary};
+use crate::summary::{FrameStats, LinearWork, RunStatus, SolveLog, SolvePoint, Summary};
 
 fn write_uv_frame(
     out: &mut OutputDir,
@@ -143,6 +143,7 @@ fn solve(
         iterations: r.iterations,
         points,
         times: r.times,
+        linear: LinearWork::of_solve(r),
     };
     Ok((p, log))
 }
@@ -231,6 +232,7 @@ pub(crate) fn run_parameterization(
         counters: Counters::default().values(),
         handles: Vec::new(),
         newton_iterations: r.iterations,
+        linear: LinearWork::of_run(std::slice::from_ref(&log), r.symbolic_analyses),
         converged_frames: usize::from(r.converged()),
         frames: vec![f0, f1],
         solves: vec![log],
