@@ -25,7 +25,8 @@
 //! analytic eigenvalues, |q| Bᵀ f(H) B: `FSpace`) or exactly at element level
 //! (the d²×d² congruence of `ecc_runtime::element_eval_projected`: `Element`),
 //! or exactly only on elements whose rest metric M = βᵀβ is far from
-//! isotropic (`Hybrid`). They coincide wherever H ⪰ 0 or M ∝ I.
+//! isotropic (`Hybrid`). They coincide wherever H ⪰ 0 or M ∝ I. `Auto`
+//! picks `Element` for triangles and `FSpace` for tetrahedra.
 
 use std::marker::PhantomData;
 use std::sync::Arc;
@@ -62,12 +63,19 @@ pub enum Projection {
         /// Smallest condition number of the rest metric M that gets the exact projection.
         min_cond: f64,
     },
+    /// By dimension, from the measurements in `docs/benchmarks/projection.md`:
+    /// `Element` for triangles (fewer Newton iterations on the SD
+    /// parameterisations for a 4×4 Jacobi eigensolve per indefinite element),
+    /// `FSpace` for tetrahedra (the 9×9 eigensolve costs more than the
+    /// iterations it saves there).
+    Auto,
 }
 
 impl Default for Projection {
-    /// See `docs/benchmarks/projection.md` for the measurements behind it.
+    /// [`Projection::Auto`]; see `docs/benchmarks/projection.md` for the
+    /// measurements behind it.
     fn default() -> Self {
-        Projection::FSpace
+        Projection::Auto
     }
 }
 
@@ -79,12 +87,23 @@ impl Projection {
         }
     }
 
-    /// The scene/CLI name: `f-space`, `element` or `hybrid`.
+    /// The scene/CLI name: `f-space`, `element`, `hybrid` or `auto`.
     pub fn name(&self) -> &'static str {
         match self {
             Projection::FSpace => "f-space",
             Projection::Element => "element",
             Projection::Hybrid { .. } => "hybrid",
+            Projection::Auto => "auto",
+        }
+    }
+
+    /// The explicit choice `self` stands for in dimension `d` (`Auto`
+    /// resolved; the others unchanged).
+    pub fn resolve(self, d: usize) -> Projection {
+        match self {
+            Projection::Auto if d == 2 => Projection::Element,
+            Projection::Auto => Projection::FSpace,
+            p => p,
         }
     }
 }
@@ -289,10 +308,12 @@ where
         }
     }
 
-    /// Use `projection` for the element Hessians (default [`Projection::FSpace`]);
+    /// Use `projection` for the element Hessians (a bare `Elastic` uses
+    /// [`Projection::FSpace`]; scenes and `param::ParamOptions` use
+    /// [`Projection::default()`], i.e. [`Projection::Auto`]);
     /// computes the rest factors M^{±½} of every element when needed.
     pub fn with_projection(mut self, projection: Projection) -> Self {
-        self.congruence = match projection {
+        self.congruence = match projection.resolve(D) {
             Projection::FSpace => Vec::new(),
             _ => self.rest.iter().map(Rest::congruence).collect(),
         };
@@ -308,8 +329,8 @@ where
     /// Whether element `s` gets the exact element projection.
     #[inline]
     fn exact(&self, s: usize) -> bool {
-        match self.projection {
-            Projection::FSpace => false,
+        match self.projection.resolve(D) {
+            Projection::FSpace | Projection::Auto => false,
             Projection::Element => true,
             Projection::Hybrid { min_cond } => self.congruence[s].cond() > min_cond,
         }

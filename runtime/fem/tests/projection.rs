@@ -47,7 +47,7 @@ fn projections_of_the_elastic_term() {
     };
     let (fspace, element) = (make(Projection::FSpace), make(Projection::Element));
     let hybrid = make(Projection::hybrid());
-    assert_eq!(Projection::default(), Projection::FSpace);
+    assert_eq!(Projection::default(), Projection::Auto);
     let conds: Vec<f64> = fspace
         .rest()
         .iter()
@@ -77,4 +77,59 @@ fn projections_of_the_elastic_term() {
     let f1 = hessian(&fspace, 1, &x, Filter::Clamp);
     let e1 = hessian(&element, 1, &x, Filter::Clamp);
     assert!((f1 - e1).amax() > 1e-6 * e1.amax());
+}
+
+/// `Auto` is `Element` on triangles and `FSpace` on tetrahedra, bit for bit.
+#[test]
+fn auto_projection_is_element_for_triangles_and_f_space_for_tets() {
+    assert_eq!(Projection::Auto.resolve(2), Projection::Element);
+    assert_eq!(Projection::Auto.resolve(3), Projection::FSpace);
+    assert_eq!(Projection::Auto.name(), "auto");
+    let (rest, tris, x) = problem();
+    let make = |p| {
+        Elastic::<Arap, Tri>::planar(Arc::new(Arap), &rest, &tris)
+            .unwrap()
+            .with_projection(p)
+    };
+    let (auto, element) = (make(Projection::Auto), make(Projection::Element));
+    let fspace = make(Projection::FSpace);
+    for s in 0..tris.len() {
+        let a = hessian(&auto, s, &x, Filter::Clamp);
+        assert_eq!(a, hessian(&element, s, &x, Filter::Clamp), "triangle {s}");
+        assert_ne!(a, hessian(&fspace, s, &x, Filter::Clamp), "triangle {s}");
+    }
+    // A skewed tet compressed and sheared (ARAP indefinite): Auto = F-space.
+    let p = vec![
+        [0.0, 0.0, 0.0],
+        [1.0, 0.1, 0.0],
+        [0.2, 0.8, 0.1],
+        [0.3, 0.1, 1.4],
+    ];
+    let f = [[0.45, 0.35, 0.1], [-0.2, 0.5, 0.3], [0.1, -0.3, 0.6]];
+    let y: Vec<[f64; 3]> = p
+        .iter()
+        .map(|q| std::array::from_fn(|i| (0..3).map(|j| f[i][j] * q[j]).sum()))
+        .collect();
+    let tet = |proj| {
+        Elastic::<Arap, ecc_fem::Tet>::new(Arc::new(Arap), &p, &[[0, 1, 2, 3]])
+            .unwrap()
+            .with_projection(proj)
+    };
+    let h = |t: &Elastic<Arap, ecc_fem::Tet>, filter| {
+        let mut g = [0.0; 12];
+        let mut h = [0.0; 144];
+        t.evaluate(0, &y, filter, &mut g, Some(&mut h));
+        h
+    };
+    let (auto, fspace) = (tet(Projection::Auto), tet(Projection::FSpace));
+    assert_ne!(
+        h(&fspace, Filter::None),
+        h(&fspace, Filter::Clamp),
+        "indefinite"
+    );
+    assert_eq!(h(&auto, Filter::Clamp), h(&fspace, Filter::Clamp));
+    assert_ne!(
+        h(&tet(Projection::Element), Filter::Clamp),
+        h(&fspace, Filter::Clamp)
+    );
 }
