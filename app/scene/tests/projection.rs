@@ -36,8 +36,8 @@ fn unknown_projection_suggests_the_closest() {
 #[test]
 fn every_projection_parameterizes_to_the_same_minimum() {
     let default = run(&disk(None));
-    assert_eq!(default.summary.projection, "f-space");
-    for name in ["f-space", "element", "hybrid"] {
+    assert_eq!(default.summary.projection, "auto");
+    for name in ["f-space", "element", "hybrid", "auto"] {
         let r = run(&disk(Some(name)));
         assert_eq!(r.summary.projection, name);
         assert!(r.summary.frames[1].converged, "{name}");
@@ -62,6 +62,13 @@ fn frame_scenes_report_and_use_the_projection() {
     };
     let reference = run(&scene("f-space"));
     assert_eq!(reference.summary.projection, "f-space");
+    // On tets `auto` is `f-space`: the same iterations and energy, bit for bit.
+    let auto = run(&scene("auto"));
+    assert_eq!(auto.summary.projection, "auto");
+    assert_eq!(
+        auto.summary.final_energy.to_bits(),
+        reference.summary.final_energy.to_bits()
+    );
     for name in ["element", "hybrid"] {
         let r = run(&scene(name));
         assert_eq!(r.summary.projection, name);

@@ -81,6 +81,7 @@ pub fn projection(s: &SolverSpec) -> Projection {
         ProjectionKind::FSpace => Projection::FSpace,
         ProjectionKind::Element => Projection::Element,
         ProjectionKind::Hybrid => Projection::hybrid(),
+        ProjectionKind::Auto => Projection::Auto,
     }
 }
 

@@ -368,13 +368,16 @@ pub enum LinearKind {
 #[serde(rename_all = "kebab-case")]
 pub enum ProjectionKind {
     /// Filter the analytic F-space eigenvalues (no eigensolve).
-    #[default]
     FSpace,
     /// The exact projection of each element Hessian (a 4×4 / 9×9
     /// eigensolve on indefinite elements only).
     Element,
     /// `element` on elements far from isotropic, `f-space` elsewhere.
     Hybrid,
+    /// `element` for triangles, `f-space` for tetrahedra (the default, see
+    /// `docs/benchmarks/projection.md`).
+    #[default]
+    Auto,
 }
 
 /// Newton options.
@@ -405,7 +408,8 @@ pub struct SolverSpec {
     /// not on 2D parameterisations).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factor_reuse: Option<bool>,
-    /// `f-space` (default), `element` or `hybrid`.
+    /// `auto` (default: `element` for triangles, `f-space` for tets),
+    /// `f-space`, `element` or `hybrid`.
     #[serde(default)]
     pub projection: ProjectionKind,
     /// Quasi-static handle moves are split into this many solves per frame
