@@ -7,18 +7,33 @@
 //!   SVD (S = V Σ Vᵀ, R = U Vᵀ), and
 //! * I5 = aᵀ Fᵀ F a = ‖F a‖².
 //!
-//! (Kim, Sin, Fan, Eberle 2019, *Anisotropic Elasticity for Inversion-Safety
-//! and Element Rehabilitation*; Kim & Eberle 2022, *Dynamic Deformables*,
-//! ch. 7.) An energy file may mix an isotropic part Ψ(I1, I2, I3 | σ) with a
-//! fibre part ψ(I4, I5) *additively*; the isotropic part implements
-//! [`crate::Energy`], the fibre part this trait, and a solver adds the two
-//! (each projected to PSD on its own, as HOBAK does).
+//! (Kim, de Goes & Iben 2019, *Anisotropic Elasticity for Inversion-Safety
+//! and Element Rehabilitation*, SIGGRAPH; Kim & Eberle, *Dynamic
+//! Deformables* course and its HOBAK code.) An energy file may mix an
+//! isotropic part Ψ(I1, I2, I3 | σ) with a fibre part ψ(I4, I5)
+//! *additively*; the isotropic part implements [`crate::Energy`], the fibre
+//! part this trait, and a solver adds the two (each projected to PSD on its
+//! own, as HOBAK does).
 //!
 //! The runtime side ([`frame`], [`point`], [`fibre_f`],
 //! [`fibre_element_eval`]) lifts ψ's partials to F-space and element
 //! gradients and PSD-filtered Hessians: a closed form when ψ has no I4
-//! derivative (eqs. P3–P5 of [`point`]), else an analytic raw Hessian and a
-//! d² × d² numeric projection.
+//! derivative (eqs. P3–P5 of [`point`]), else the analytic I4 Hessian on its
+//! range and the smallest eigensolve that remains (`fibre/reduced.rs`:
+//! 7 × 7 for ψ(I4) in 3D, d² × d² for ψ(I4, I5)).
+//!
+//! **Citations** (checked against the text, not from memory). Of Kim, de
+//! Goes & Iben 2019 only §4.1, "The Eigensystem of I5", was available
+//! here (as transcribed with its numbering in the I❤LA case-study gallery,
+//! `heartdown/CaseStudies/.../Anisotropic`): eq. 5 I5 = tr(C A), eq. 6
+//! ∂I5/∂F = 2 F A, eq. 7 ∂²I5/∂f² = 2 [A_ij I] with the unnumbered
+//! eigenvalues λ_{0,1,2} = 2‖a‖² (2D: λ_{0,1}) on Q_i = e_i aᵀ and a
+//! rank-six null space. Those are cited by number in [`frame`] (eq. F3).
+//! The paper's later equation numbers (anisotropic ARAP, the I4 analysis)
+//! and *Dynamic Deformables*' section numbers could not be checked here
+//! and are not given; the energies and clamped eigenvalues are instead
+//! checked against HOBAK's sources (`src/Hyperelastic/Volume/
+//! ANISOTROPIC_{ARAP,STVK,FUNG}.cpp`, read for this purpose).
 //!
 //! This file is the contract between the compiler's back ends (generated
 //! code, the interpreter) and the runtime's fibre eigensystems.

@@ -297,7 +297,7 @@ fn projections_equal_the_numeric_eigensolve_2d() {
 /// StVK λ0 = 2μ(I5 − 1) + 4μ I5, λ1 = 2μ(I5 − 1) (ANISOTROPIC_STVK::clampedHessian);
 /// Fung λ1 = 2μ(e^{I5−1} − 1), λ0 = λ1 + 4μ I5 e^{I5−1} (ANISOTROPIC_FUNG);
 /// ARAP: along μ, across μ(1 − S/√I5) (ANISOTROPIC_ARAP::hessian's
-/// (1 − S/√I5) H5 + S/√I5³ f fᵀ, Kim et al. 2019 §5).
+/// (1 − S/√I5) H5 + S/√I5³ f fᵀ; the energy of Kim, de Goes & Iben 2019).
 #[test]
 fn closed_form_eigenvalues_are_hobaks() {
     let mut r = rng(65);

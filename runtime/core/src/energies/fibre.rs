@@ -6,9 +6,15 @@
 //! | [`FibreStvk`] | μ/2 (I5 − 1)² | along 2μ(I5 − 1) + 4μ I5, across 2μ(I5 − 1) |
 //! | [`FibreFung`] | k1/(2k2) (exp(k2 (I5 − 1)²) − 1) | along 2e k1 (I5 − 1) + 4 e k1 (1 + 2k2 (I5 − 1)²) I5, across 2 e k1 (I5 − 1), e = exp(k2 (I5 − 1)²) |
 //!
-//! The first two are Kim et al. 2019 §5 / Kim & Eberle 2022 §7.3 (HOBAK
-//! `ANISOTROPIC_ARAP`, `ANISOTROPIC_STVK`, whose `clampedHessian`s use
-//! these two values); the third is the Holzapfel–Gasser–Ogden fibre term.
+//! The first two are Kim, de Goes & Iben 2019's anisotropic ARAP and the
+//! StVK fibre term of *Dynamic Deformables*, as implemented in HOBAK
+//! (`ANISOTROPIC_ARAP.cpp`: ψ = ½μ(√I5 − S)², S = +1 if I4 > 0 else −1;
+//! `ANISOTROPIC_STVK.cpp`: ψ = ½μ(I5 − 1)²; both checked in the source,
+//! their `hessian`/`clampedHessian`s use these two eigenvalues; the
+//! papers' equation numbers could not be checked here, see
+//! [`crate::fibre`]); the third is the Holzapfel–Gasser–Ogden fibre term
+//! (HOBAK's `ANISOTROPIC_FUNG` is the different μ(exp(I5 − 1) − I5),
+//! tested as `HobakFung` in runtime/core/tests/fibre.rs).
 //! ARAP's S(I4) = +1 for I4 > 0 and −1 otherwise (HOBAK's convention, which
 //! also decides I4 = 0); S is piecewise constant, so ψ4 = ψ44 = ψ45 = 0 and
 //! its Hessian takes the closed form although it reads I4. ψ jumps where I4
@@ -19,14 +25,16 @@ use super::param_error;
 use crate::energy::ParamError;
 use crate::fibre::{FibreDerivs, FibreEnergy, FibreUse};
 
-/// Anisotropic ARAP: ψ = μ/2 (√I5 − S(I4))² (Kim et al. 2019, eq. 17 of §5).
+/// Anisotropic ARAP: ψ = μ/2 (√I5 − S(I4))² (Kim, de Goes & Iben 2019;
+/// HOBAK's `ANISOTROPIC_ARAP::psi`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FibreArap {
     /// Stiffness μ.
     pub mu: f64,
 }
 
-/// Anisotropic StVK fibre term: ψ = μ/2 (I5 − 1)² (Kim & Eberle 2022 §7.3).
+/// Anisotropic StVK fibre term: ψ = μ/2 (I5 − 1)² (HOBAK's
+/// `ANISOTROPIC_STVK::psi`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FibreStvk {
     /// Stiffness μ.

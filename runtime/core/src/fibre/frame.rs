@@ -10,9 +10,10 @@
 //! back with vec(U M Vᵀ) = (V ⊗ U) vec(M) (column-major vec).
 //!
 //! **I5.** ∂I5/∂F = 2 F a aᵀ, ∂²I5/∂f² = 2 (a aᵀ ⊗ I_d)                (F3)
-//! (Kim & Eberle 2022, *Dynamic Deformables* §7.2; HOBAK's `kronIdentity(A)`
-//! is half of it): eigenvalue 2 on vec(q aᵀ) for every q (d modes), 0 on
-//! vec(q cᵀ) with c ⊥ a.
+//! (Kim, de Goes & Iben 2019, §4.1 eqs. 6 and 7; HOBAK's `kronIdentity(A)`
+//! is half of it): eigenvalue 2 on vec(q aᵀ) for every q (d modes; §4.1:
+//! λ_{0,1,2} = 2‖a‖² on Q_i = e_i aᵀ), 0 on vec(q cᵀ) with c ⊥ a (§4.1's
+//! rank-six null space in 3D).
 //!
 //! **I4.** S is the square root of C = FᵀF with eigenvalues σ_i (signed), so
 //! S dS + dS S = dC and, in the singular frame, the first variation is
@@ -22,8 +23,8 @@
 //!
 //! In the mode basis of the isotropic runtime this is b_i² on the scaling
 //! mode d_i, √2 b_i b_j on the flip of (i, j) and −√2 b_i b_j (σ_i − σ_j)/(σ_i + σ_j)
-//! on its twist: the rotation variant R A (Kim et al. 2019) plus a twist
-//! term that vanishes only for σ_i = σ_j. The second variation
+//! on its twist: R A (the derivative with R held fixed, dI4 = aᵀRᵀdF a)
+//! plus a twist term from dR that vanishes only for σ_i = σ_j. The second variation
 //! (S d²S + d²S S = 2 dCdC-terms) gives the bilinear form
 //!
 //!   B(M, N) = Σ_{p≠q} b_p b_q X_pq/(σ_p + σ_q) + Σ_p b_p² D_p(M, N),     (F5)
@@ -39,8 +40,9 @@
 //!
 //! The I4 Hessian couples scaling and twist modes
 //! (B(d_i, t_ij) = −2√2 b_i b_j σ_j/(σ_i + σ_j)² ≠ 0 in general), so it is
-//! *not* diagonal in the isotropic mode basis; see [`super::point`] for how
-//! energies using I4 are projected.
+//! *not* diagonal in the isotropic mode basis; `fibre/reduced.rs` gives the
+//! same Hessian in polar coordinates (eq. R3) and the smallest eigensolve
+//! for energies using I4.
 
 use nalgebra::{SMatrix, SVector};
 

@@ -15,20 +15,28 @@
 //!   λ_across = 2ψ5 on vec(q aᵀ), q ⊥ n (d − 1 modes),                      (P4)
 //!   0 on vec(q cᵀ), c ⊥ a (d² − d modes).                                  (P5)
 //!
-//! (Kim & Eberle 2022 §7.3–7.4, HOBAK's `ANISOTROPIC_STVK/ARAP/FUNG::clampedHessian`
-//! use exactly these two non-zero values.) The filtered Hessian is assembled
-//! from the three orthogonal projectors, so no vector q is ever chosen:
+//! (§4.1's eigensystem of I5, eqs. 6–7 of Kim, de Goes & Iben 2019, carried
+//! through the chain rule; HOBAK's `ANISOTROPIC_STVK::clampedHessian` and
+//! `ANISOTROPIC_FUNG::clampedHessian` use exactly these two non-zero values,
+//! λ1 = 2ψ5 and λ0 = λ1 + 4ψ55 I5 in their variables, and
+//! `ANISOTROPIC_ARAP::hessian` is (1 − S/√I5) H5 + S/√I5³ f fᵀ with H5 =
+//! `kronIdentity(A)`: along μ, across μ(1 − S/√I5).) The filtered Hessian
+//! is assembled from the three orthogonal projectors, so no vector q is
+//! ever chosen:
 //! H = f(λ_along) e eᵀ + f(λ_across)(P − e eᵀ) + f(0)(I − P), P = a aᵀ ⊗ I,
 //! e = a ⊗ n. At F a = 0 the direction n is undefined but λ_along = λ_across
 //! there, so any n gives the same H (n = e₀ is used).
 //!
-//! **Numeric fallback, ψ with I4 terms** ([`FibrePath::Numeric`]). H4
-//! couples the scaling and twist modes (see [`super::frame`]) and no closed
-//! form is established here, so the raw d² × d² Hessian P2 (analytic) is
-//! projected by a symmetric eigensolve of that d² × d² block (9 × 9 in 3D,
-//! 4 × 4 in 2D): the smallest block that remains once the scalar chain rule
-//! is analytic. The isotropic scaling–scaling block of H4 is zero (I4 is
-//! linear in σ), but the coupling of scaling to twist prevents a smaller solve.
+//! **ψ with I4 terms** ([`FibrePath::Reduced`]). H4 couples the scaling
+//! and twist modes (see [`super::frame`]); `fibre/reduced.rs` writes it in
+//! polar coordinates (eqs. R1–R3), proves that ψ(I4)'s Hessian vanishes on
+//! d − 1 explicit symmetric directions (eq. R4) and projects by an
+//! eigensolve of the rest only: 7 × 7 in 3D, 3 × 3 in 2D. ψ(I4, I5) has no
+//! such null space for a generic fibre and keeps a d² × d² eigensolve (of the
+//! same cheap form). The raw request (`Filter::None`) and the poles
+//! σ_i + σ_j = 0 use the analytic F5 Hessian P2 ([`FibrePath::Numeric`],
+//! with a d² × d² eigensolve when filtered): the reference the reduced path
+//! is tested against.
 //!
 //! **Non-finite values.** ψ = +∞ gives zero derivatives. An infinite ψ5 at
 //! F a = 0 (e.g. √I5 in anisotropic ARAP: a cone point, ψ is not
