@@ -144,21 +144,26 @@ fn linear_precision_on_a_planar_disk() {
     assert!(off > 1e-3);
 }
 
-#[test]
-fn bad_meshes_are_rejected_with_reasons() {
-    let square = || {
-        TriMesh::new(
-            vec![
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-            ],
-            vec![[0, 1, 2], [0, 2, 3]],
-        )
-    };
-    let err = |m: &TriMesh| tutte_embedding(m, TutteWeights::Uniform).unwrap_err();
+/// The unit square as two triangles (a valid disk).
+fn square() -> TriMesh {
+    TriMesh::new(
+        vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    )
+}
 
+/// The error of the uniform-weight embedding of `m`.
+fn err(m: &TriMesh) -> TutteError {
+    tutte_embedding(m, TutteWeights::Uniform).unwrap_err()
+}
+
+#[test]
+fn bad_elements_and_coordinates_are_rejected_with_reasons() {
     assert_eq!(
         err(&TriMesh::default()),
         TutteError::Invalid(ValidationError::NoElements)
@@ -187,7 +192,10 @@ fn bad_meshes_are_rejected_with_reasons() {
         err(&m),
         TutteError::Invalid(ValidationError::NonFiniteCoordinate { vertex: 1, .. })
     ));
+}
 
+#[test]
+fn meshes_that_are_not_one_manifold_disk_are_rejected() {
     let bunny = read_tri_mesh(data("bunny.off")).unwrap();
     let e = err(&bunny);
     assert_eq!(e, TutteError::NotADisk { loops: 0 });
@@ -241,7 +249,10 @@ fn bad_meshes_are_rejected_with_reasons() {
         err(&fin),
         TutteError::Invalid(ValidationError::NonManifoldEdge { .. })
     ));
+}
 
+#[test]
+fn degenerate_boundaries_and_infinite_weights_are_rejected() {
     let mut m = square();
     m.positions = vec![[1.0, 1.0, 1.0]; 4];
     assert_eq!(err(&m), TutteError::DegenerateBoundary);
