@@ -374,7 +374,7 @@ impl SplitFactor {
         let old = |new: usize| symbolic.perm().map_or(new, |p| p.arrays().0[new]);
         let columns = |part: Part| -> Vec<usize> {
             (0..sn.n_supernodes())
-                .filter(|&k| cut.parts[k] == part)
+                .filter(|&k| cut[k] == part)
                 .flat_map(|k| sn.supernode_begin()[k]..sn.supernode_end()[k])
                 .map(old)
                 .collect()

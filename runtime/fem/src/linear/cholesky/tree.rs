@@ -16,9 +16,12 @@
 //! S grows from the roots: repeatedly the heaviest subtree of the forest
 //! moves its root supernode into S (its children become subtrees), and the
 //! forest is split between the two halves by longest-processing-time
-//! greedy on subtree flops. The S with the least estimated critical path,
-//! max(flops of a half) + k³ (k separator unknowns: its dense block in each
-//! half, the products and L_Σ of the Schur complement), is kept.
+//! greedy on subtree flops, until the heaviest subtree is below a quarter of
+//! the total. The S with the least estimated critical path,
+//! max(flops of a half's subtrees) + ½k³, is kept (k separator unknowns: its
+//! dense k³/3 block in each half, the k³/3 product of (3) on each half's
+//! thread and L_Σ on both threads, k³/6 each; ½k³ rather than k³ because
+//! these dense kernels run at a higher rate than the sparse supernodes).
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
@@ -37,13 +40,6 @@ pub(crate) enum Part {
     Second,
     /// The separator S.
     Separator,
-}
-
-/// The chosen split: per supernode its part, and the estimated flops.
-pub(crate) struct TreeSplit {
-    pub parts: Vec<Part>,
-    /// Estimated critical path (flops measure of [`super::flops`]).
-    pub critical: f64,
 }
 
 /// Flops Σ c² of supernode `s` (width w, r off-diagonal rows).
@@ -81,10 +77,11 @@ fn two_bins(forest: &[usize], weight: &[f64]) -> (Vec<(usize, Part)>, [f64; 2]) 
     (assigned, bins)
 }
 
-/// The split of the supernodal tree with the least estimated critical path,
-/// or `None` when one half would be empty or (unless `force`) no split is
-/// estimated faster than the plain factorisation.
-pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Option<TreeSplit> {
+/// The part of each supernode in the split of the supernodal tree with the
+/// least estimated critical path, or `None` when one half would be empty or
+/// (unless `force`) no split is estimated faster than the plain
+/// factorisation.
+pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Option<Vec<Part>> {
     let n = s.n_supernodes();
     let parent = parents(s);
     let mut subtree: Vec<f64> = (0..n).map(|k| node_flops(s, k)).collect();
@@ -147,5 +144,5 @@ pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Optio
             parts[k] = parts[parent[k]];
         }
     }
-    Some(TreeSplit { parts, critical })
+    Some(parts)
 }
