@@ -210,14 +210,19 @@ fn degenerate_and_inverted_elements() {
     assert!(validate_tri(m, true, &o).is_ok());
 }
 
-#[test]
-fn manifold_orientation_and_component_errors() {
-    let strict = ValidationOptions {
+/// Every topological requirement switched on.
+fn strict() -> ValidationOptions {
+    ValidationOptions {
         require_manifold: true,
         require_oriented: true,
         require_single_component: true,
         ..Default::default()
-    };
+    }
+}
+
+#[test]
+fn non_manifold_edges_and_vertices_are_errors_when_required() {
+    let strict = strict();
     // Three triangles on edge (0, 1).
     let fin = TriMesh::new(
         vec![
@@ -264,7 +269,11 @@ fn manifold_orientation_and_component_errors() {
         s,
         "vertex 0 is non-manifold: its 2 triangles form 2 separate fans (pinched vertex)"
     );
+}
 
+#[test]
+fn orientation_and_component_errors() {
+    let strict = strict();
     let mut m = square();
     m.positions[3][2] = 1.0;
     m.triangles[1] = [0, 3, 2];
@@ -293,7 +302,11 @@ fn manifold_orientation_and_component_errors() {
         v.warnings,
         vec!["the mesh has 2 connected components".to_string()]
     );
+}
 
+#[test]
+fn non_manifold_tet_faces_are_errors_when_required() {
+    let strict = strict();
     // Three tets on one face.
     let t = TetMesh::new(
         vec![
