@@ -23,6 +23,7 @@ shift $(( $# < 3 ? $# : 3 ))
 matrices=("$@")
 [ ${#matrices[@]} -gt 0 ] || matrices=(camelhead armadillo_cut_low hand_1_i_f5000 disk hand_arap hand_snh)
 mkdir -p "$out"
+out=$(cd "$out" && pwd)  # absolute: make -C below changes directory
 
 cd "$root"
 # BIN_DIR=…: use export_hessians/factor_bench already built there (e.g. from a clean worktree)
