@@ -27,6 +27,9 @@ const ENERGIES: &[(&str, &str)] = &[
     ("poly2", "Poly2"),
     ("polyneg", "PolyNeg"),
     ("polyneg2", "PolyNeg2"),
+    ("fibre_arap", "AnisotropicArap"),
+    ("fibre_stvk", "AnisotropicStvk"),
+    ("fibre_fung", "AnisotropicFung"),
 ];
 
 fn main() {

@@ -18,3 +18,6 @@ include!(concat!(env!("OUT_DIR"), "/poly.rs"));
 include!(concat!(env!("OUT_DIR"), "/poly2.rs"));
 include!(concat!(env!("OUT_DIR"), "/polyneg.rs"));
 include!(concat!(env!("OUT_DIR"), "/polyneg2.rs"));
+include!(concat!(env!("OUT_DIR"), "/fibre_arap.rs"));
+include!(concat!(env!("OUT_DIR"), "/fibre_stvk.rs"));
+include!(concat!(env!("OUT_DIR"), "/fibre_fung.rs"));

@@ -66,4 +66,4 @@ mod generated;
 mod registry;
 
 pub use generated::*;
-pub use registry::{ENTRIES, Entry, by_name, entry, names};
+pub use registry::{ENTRIES, Entry, by_name, entry, fibre_by_name, fibre_names, names};

@@ -2,7 +2,7 @@
 
 use std::any::Any;
 
-use ecc_runtime::Energy;
+use ecc_runtime::{Energy, FibreEnergy};
 
 use crate::generated::*;
 
@@ -19,6 +19,9 @@ pub struct Entry {
     pub d3: bool,
     /// One line about the energy.
     pub summary: &'static str,
+    /// A fibre energy ψ(I4, I5) (`fiber a` in its `.psi`): built by
+    /// [`fibre_by_name`], not [`by_name`].
+    pub fibre: bool,
 }
 
 /// Every built-in energy, in a stable order.
@@ -29,6 +32,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "as-rigid-as-possible, ‖F − R‖²",
+        fibre: false,
     },
     Entry {
         name: "corotational",
@@ -36,6 +40,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "co-rotational, μ‖F − R‖² + κ/2 tr²(S − I)",
+        fibre: false,
     },
     Entry {
         name: "sd",
@@ -43,6 +48,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "symmetric Dirichlet, (‖F‖² + ‖F⁻¹‖²)/2 (barrier)",
+        fibre: false,
     },
     Entry {
         name: "sarap",
@@ -50,6 +56,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "symmetric ARAP (barrier)",
+        fibre: false,
     },
     Entry {
         name: "mips",
@@ -57,6 +64,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: false,
         summary: "MIPS, ‖F‖²/det F (2D, barrier)",
+        fibre: false,
     },
     Entry {
         name: "stvk",
@@ -64,6 +72,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "St. Venant–Kirchhoff",
+        fibre: false,
     },
     Entry {
         name: "neohookean",
@@ -71,6 +80,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "compressible Neo-Hookean with log J (barrier)",
+        fibre: false,
     },
     Entry {
         name: "snh",
@@ -78,6 +88,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "stable Neo-Hookean (Smith et al. 2018)",
+        fibre: false,
     },
     Entry {
         name: "ogden",
@@ -85,6 +96,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "one-term compressible Ogden, α = 1.5 (barrier)",
+        fibre: false,
     },
     Entry {
         name: "hencky",
@@ -92,6 +104,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "Hencky (logarithmic strain, barrier)",
+        fibre: false,
     },
     Entry {
         name: "poly",
@@ -99,6 +112,7 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "Σ(σi² − 1)²",
+        fibre: false,
     },
     Entry {
         name: "polyneg",
@@ -106,12 +120,46 @@ pub const ENTRIES: &[Entry] = &[
         d2: true,
         d3: true,
         summary: "Σ(σi − 1/σi)² (barrier)",
+        fibre: false,
+    },
+    Entry {
+        name: "fibre_arap",
+        aliases: &["fiber_arap", "anisotropic_arap"],
+        d2: true,
+        d3: true,
+        summary: "fibre: anisotropic ARAP, μ/2 (√I5 − sign(I4))² (Kim et al. 2019)",
+        fibre: true,
+    },
+    Entry {
+        name: "fibre_stvk",
+        aliases: &["fiber_stvk", "anisotropic_stvk"],
+        d2: true,
+        d3: true,
+        summary: "fibre: anisotropic StVK term, μ/2 (I5 − 1)²",
+        fibre: true,
+    },
+    Entry {
+        name: "fibre_fung",
+        aliases: &["fiber_fung", "anisotropic_fung"],
+        d2: true,
+        d3: true,
+        summary: "fibre: Fung-type exponential, k1/(2k2) (exp(k2 (I5 − 1)²) − 1)",
+        fibre: true,
     },
 ];
 
-/// The registry names, in a stable order.
+/// The names of the isotropic energies ([`by_name`]), in a stable order.
 pub fn names() -> Vec<&'static str> {
-    ENTRIES.iter().map(|e| e.name).collect()
+    ENTRIES
+        .iter()
+        .filter(|e| !e.fibre)
+        .map(|e| e.name)
+        .collect()
+}
+
+/// The names of the fibre energies ([`fibre_by_name`]), in a stable order.
+pub fn fibre_names() -> Vec<&'static str> {
+    ENTRIES.iter().filter(|e| e.fibre).map(|e| e.name).collect()
 }
 
 /// The entry called `name` (or one of its aliases; case-insensitive, `-`
@@ -143,7 +191,7 @@ macro_rules! new {
     };
 }
 
-/// The constructors of [`ENTRIES`], in the same order: (2D, 3D).
+/// The constructors of the isotropic [`ENTRIES`], in the same order: (2D, 3D).
 const NEW: [(Option<New<2>>, Option<New<3>>); 12] = [
     (new!(Arap), new!(Arap)),
     (new!(CoRotational), new!(CoRotational)),
@@ -163,8 +211,11 @@ const NEW: [(Option<New<2>>, Option<New<3>>); 12] = [
 /// alias (see [`entry`]), with its default parameters; `None` for an
 /// unknown name, a dimension the energy does not exist in, or another `D`.
 pub fn by_name<const D: usize>(name: &str) -> Option<Box<dyn Energy<D>>> {
-    let key = entry(name)?.name;
-    let (new2, new3) = NEW[ENTRIES.iter().position(|e| e.name == key)?];
+    let key = entry(name).filter(|e| !e.fibre)?.name;
+    let (new2, new3) = NEW[ENTRIES
+        .iter()
+        .filter(|e| !e.fibre)
+        .position(|e| e.name == key)?];
     // Box<dyn Energy<2>> *is* Box<dyn Energy<D>> when D = 2: the downcast
     // only names that identity for the generic signature.
     let made: Box<dyn Any> = match D {
@@ -175,6 +226,42 @@ pub fn by_name<const D: usize>(name: &str) -> Option<Box<dyn Energy<D>>> {
     made.downcast::<Box<dyn Energy<D>>>().ok().map(|b| *b)
 }
 
+/// A constructor of a d-dimensional fibre energy with its default parameters.
+type NewFibre<const D: usize> = fn() -> Box<dyn FibreEnergy<D>>;
+
+/// The constructors of the fibre [`ENTRIES`], in the same order: (2D, 3D).
+const NEW_FIBRE: [(NewFibre<2>, NewFibre<3>); 3] = [
+    (
+        || Box::new(AnisotropicArap::new()),
+        || Box::new(AnisotropicArap::new()),
+    ),
+    (
+        || Box::new(AnisotropicStvk::new()),
+        || Box::new(AnisotropicStvk::new()),
+    ),
+    (
+        || Box::new(AnisotropicFung::new()),
+        || Box::new(AnisotropicFung::new()),
+    ),
+];
+
+/// A fresh d-dimensional fibre energy ψ(I4, I5) (generated from
+/// `energies/psi/fibre_*.psi`) by registry name or alias, with its default
+/// parameters; `None` for an unknown or isotropic name or another `D`.
+pub fn fibre_by_name<const D: usize>(name: &str) -> Option<Box<dyn FibreEnergy<D>>> {
+    let key = entry(name).filter(|e| e.fibre)?.name;
+    let (new2, new3) = NEW_FIBRE[ENTRIES
+        .iter()
+        .filter(|e| e.fibre)
+        .position(|e| e.name == key)?];
+    let made: Box<dyn Any> = match D {
+        2 => Box::new(new2()),
+        3 => Box::new(new3()),
+        _ => return None,
+    };
+    made.downcast::<Box<dyn FibreEnergy<D>>>().ok().map(|b| *b)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -182,8 +269,21 @@ mod tests {
     #[test]
     fn every_entry_resolves_in_its_dimensions() {
         for e in ENTRIES {
-            assert_eq!(by_name::<2>(e.name).is_some(), e.d2, "{} in 2D", e.name);
-            assert_eq!(by_name::<3>(e.name).is_some(), e.d3, "{} in 3D", e.name);
+            let (d2, d3) = if e.fibre {
+                (
+                    fibre_by_name::<2>(e.name).is_some(),
+                    fibre_by_name::<3>(e.name).is_some(),
+                )
+            } else {
+                (
+                    by_name::<2>(e.name).is_some(),
+                    by_name::<3>(e.name).is_some(),
+                )
+            };
+            assert_eq!(d2, e.d2, "{} in 2D", e.name);
+            assert_eq!(d3, e.d3, "{} in 3D", e.name);
+            // One kind each: an isotropic name is no fibre energy and back.
+            assert!(by_name::<3>(e.name).is_none() || fibre_by_name::<3>(e.name).is_none());
             for a in e.aliases {
                 assert_eq!(entry(a).map(|x| x.name), Some(e.name));
             }
@@ -201,7 +301,13 @@ mod tests {
 
     #[test]
     fn every_constructor_builds_the_named_energy() {
-        assert_eq!(NEW.len(), ENTRIES.len());
+        assert_eq!(NEW.len() + NEW_FIBRE.len(), ENTRIES.len());
+        for e in ENTRIES.iter().filter(|e| e.fibre) {
+            for a in std::iter::once(&e.name).chain(e.aliases) {
+                let x = fibre_by_name::<3>(a).unwrap();
+                assert_eq!(entry(x.name()).map(|y| y.name), Some(e.name), "{a}");
+            }
+        }
         for e in ENTRIES {
             for a in std::iter::once(&e.name).chain(e.aliases) {
                 if let Some(x) = by_name::<2>(a) {

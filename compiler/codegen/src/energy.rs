@@ -50,6 +50,7 @@ pub(crate) fn generate_items(
     let mut taken: std::collections::HashSet<String> = RESERVED
         .iter()
         .chain(PARAM_RESERVED)
+        .chain(crate::fibre::RESERVED)
         .map(|s| s.to_string())
         .collect();
     let locals = module
@@ -71,8 +72,22 @@ pub(crate) fn generate_items(
         .unwrap_or_else(|| module.name.clone());
     for d in &module.dims {
         out.extend(energy_impl(&ctx, d, &name));
+        if let Some(f) = &d.fibre {
+            out.extend(crate::fibre::fibre_impl(&fibre_ctx(&ctx), d.dim, f, &name));
+        }
     }
     Ok(out)
+}
+
+/// The fibre back end's view of the context ([`crate::fibre`]).
+fn fibre_ctx<'a>(ctx: &'a Ctx<'_>) -> crate::fibre::FibreCtx<'a> {
+    crate::fibre::FibreCtx {
+        rt: &ctx.rt,
+        ty: &ctx.ty,
+        names: ctx.module.params.iter().map(|p| p.name.as_str()).collect(),
+        fields: &ctx.fields,
+        locals: &ctx.locals,
+    }
 }
 
 fn type_ident(name: &str) -> Result<Ident, CodegenError> {
@@ -365,6 +380,17 @@ fn prelude(ctx: &Ctx, dim: u8, plan: &Plan, extra_sigma: &[usize]) -> TokenStrea
     out
 }
 
+/// `sigma`, or `_sigma` when the prelude reads no σ (Ψ_iso = 0 of a pure
+/// fibre energy, or Ψ depending on parameters only).
+fn sigma_arg(plan: &Plan, extra_sigma: &[usize]) -> TokenStream {
+    let reads = !extra_sigma.is_empty()
+        || plan
+            .leaves()
+            .iter()
+            .any(|s| matches!(s, Sym::Sigma(_) | Sym::I1 | Sym::I2 | Sym::I3));
+    if reads { quote!(sigma) } else { quote!(_sigma) }
+}
+
 /// The value of Ψ as a name that can take method calls.
 fn psi_binding(plan: &Plan, psi: Id) -> (TokenStream, TokenStream) {
     if plan.is_bound(psi) {
@@ -437,11 +463,7 @@ fn psi_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
     let lets = plan.lets(Region::Psi);
     let (bind, psi) = psi_binding(&plan, d.psi);
     let inside = inside(d, &plan, &psi);
-    let sigma = if prelude.is_empty() {
-        quote!(_sigma)
-    } else {
-        quote!(sigma)
-    };
+    let sigma = sigma_arg(&plan, &[]);
     quote! {
         fn psi(&self, #sigma: &[f64; #dim]) -> f64 {
             #prelude
@@ -692,7 +714,9 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
     let mut taken: Vec<&str> = RESERVED.to_vec();
     taken.extend(guards.iter().map(|g| g.name.as_str()));
     let plan = Plan::new(&d.graph, d.dim, &roots, &hints(d), &namer, &taken);
-    let prelude = prelude(ctx, d.dim, &plan, &pair_sigmas(d, &guards));
+    let extra = pair_sigmas(d, &guards);
+    let prelude = prelude(ctx, d.dim, &plan, &extra);
+    let sigma = sigma_arg(&plan, &extra);
     let psi_lets = plan.lets(Region::Psi);
     let (bind, psi) = psi_binding(&plan, d.psi);
     let main_lets = plan.lets(Region::Main);
@@ -713,7 +737,7 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
     let twist = slot_values(d, &plan, "twist", &sp.twist, &sp.twist_kind);
     let flip = slot_values(d, &plan, "flip", &sp.flip, &sp.flip_kind);
     quote! {
-        fn spectral(&self, sigma: &[f64; #dim_lit]) -> #rt::Spectral<#dim_lit> {
+        fn spectral(&self, #sigma: &[f64; #dim_lit]) -> #rt::Spectral<#dim_lit> {
             #prelude
             #psi_lets
             #bind

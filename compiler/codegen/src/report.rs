@@ -75,6 +75,7 @@ fn dim_section(out: &mut String, d: &DimIr) {
     pair_modes(out, d);
     divided_differences(out, d);
     singularities(out, d);
+    crate::report_fibre::fibre_section(out, d.dim, d.fibre.as_ref());
 }
 
 /// The property table: path, domain, barrier, SVD-freedom, sign symmetry,

@@ -26,10 +26,10 @@ fn compiles_a_file_and_rewrites_only_on_change() {
 fn errors_are_rendered_and_returned() {
     let dir = tempfile::tempdir().unwrap_or_else(|e| panic!("{e}"));
     let src = dir.path().join("bad.psi");
-    std::fs::write(&src, "psi = I2 - 2*I4\n").unwrap_or_else(|e| panic!("{e}"));
+    std::fs::write(&src, "psi = I2 - 2*I7\n").unwrap_or_else(|e| panic!("{e}"));
     match compile_file_to(&src, dir.path(), &GenOptions::named("Bad")) {
         Err(BuildError::Compile { rendered, .. }) => {
-            assert!(rendered.contains("unknown identifier `I4`"), "{rendered}");
+            assert!(rendered.contains("unknown identifier `I7`"), "{rendered}");
             assert!(rendered.contains("bad.psi:1:"), "{rendered}");
         }
         other => panic!("expected a compile error, got {other:?}"),

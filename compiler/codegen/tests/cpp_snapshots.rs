@@ -6,6 +6,10 @@
 use ecc_codegen::{CppOptions, CppRuntime, cpp::CPP_RUNTIME, generate_cpp, type_name_from_stem};
 
 fn header(stem: &str, runtime: CppRuntime) -> String {
+    header_or_error(stem, runtime).unwrap_or_else(|e| panic!("{stem}: {e}"))
+}
+
+fn header_or_error(stem: &str, runtime: CppRuntime) -> Result<String, ecc_codegen::CodegenError> {
     let path = format!(
         "{}/../../energies/psi/{stem}.psi",
         env!("CARGO_MANIFEST_DIR")
@@ -18,7 +22,7 @@ fn header(stem: &str, runtime: CppRuntime) -> String {
         energy_name: None,
         runtime,
     };
-    generate_cpp(&module, &opts).unwrap_or_else(|e| panic!("{stem}: {e}"))
+    generate_cpp(&module, &opts)
 }
 
 #[test]
@@ -28,7 +32,15 @@ fn generated_headers() {
             .file_stem()
             .and_then(|s| s.to_str())
             .expect("a file stem");
-        let text = header(stem, CppRuntime::Include("ecc_runtime.hpp".into()));
+        // Fibre energies (`fibre_*.psi`) are a clear error, not a header.
+        let text = if stem.starts_with("fibre_") {
+            match header_or_error(stem, CppRuntime::Include("ecc_runtime.hpp".into())) {
+                Err(e) => format!("error: {e}"),
+                Ok(_) => panic!("{stem}: a fibre energy must be refused by --emit cpp"),
+            }
+        } else {
+            header(stem, CppRuntime::Include("ecc_runtime.hpp".into()))
+        };
         insta::assert_snapshot!("cpp", text);
     });
 }

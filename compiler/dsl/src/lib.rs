@@ -55,7 +55,7 @@ pub mod poly;
 pub mod span;
 pub mod testing;
 
-pub use cas::{Env, Graph, Id, Node, Sym, Tape, eval, eval_many};
+pub use cas::{Env, Graph, Id, Node, Sym, Tape, eval, eval_many, sign_i4};
 pub use compile::{compile, compile_dim, slot_pairs};
 pub use diag::{Diagnostics, Error};
 pub use ir::{

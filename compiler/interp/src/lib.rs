@@ -23,6 +23,11 @@
 //! # Ok::<(), ecc_interp::LoadError>(())
 //! ```
 //!
+//! An energy with `fiber a` has a second part ψ(I4, I5)
+//! ([`ecc_dsl::FibreIr`]): [`InterpFibre`] implements
+//! [`ecc_runtime::FibreEnergy`] for it ([`fibre_from_module`]), while
+//! [`InterpEnergy`] is the isotropic part Ψ_iso.
+//!
 //! Conventions: Ψ = NaN (outside the domain, e.g. log of a negative
 //! determinant) is reported as +∞ and [`ecc_runtime::Spectral::infinite`];
 //! [`Energy::info`](ecc_runtime::Energy::info) reports the IR's `barrier`
@@ -32,11 +37,13 @@
 
 mod energy;
 mod error;
+mod fibre;
 mod load;
 pub mod tape;
 
 pub use energy::InterpEnergy;
 pub use error::{BuildError, LoadError};
+pub use fibre::{InterpFibre, fibre_from_module, fibre_use};
 pub use load::{
     compile_module, energy_from_module, energy_name, load_psi, load_source, param_values,
 };

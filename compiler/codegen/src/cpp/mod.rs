@@ -70,5 +70,24 @@ impl CppOptions {
 
 /// The C++17 header of `module` (see the module docs). Pure: no I/O.
 pub fn generate_cpp(module: &ecc_dsl::Module, opts: &CppOptions) -> Result<String, CodegenError> {
+    if module.dims.iter().any(|d| d.fibre.is_some()) {
+        return Err(CodegenError::FibreUnsupported {
+            backend: "--emit cpp",
+            line: fiber_line(&module.source),
+        });
+    }
     energy::header(module, opts)
+}
+
+/// The 1-based line of the first `fiber`/`fibre` statement of `source` (1
+/// if it cannot be found, e.g. after `;` on one line).
+fn fiber_line(source: &str) -> usize {
+    source
+        .lines()
+        .position(|l| {
+            let t = l.trim_start();
+            (t.starts_with("fiber") || t.starts_with("fibre"))
+                && t[5..].starts_with(|c: char| c.is_whitespace())
+        })
+        .map_or(1, |k| k + 1)
 }

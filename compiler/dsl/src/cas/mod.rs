@@ -11,7 +11,7 @@ mod print;
 pub mod rat;
 
 pub use build::MAX_CONTENT_BITS;
-pub use eval::{Env, Tape, eval, eval_many};
+pub use eval::{Env, Tape, eval, eval_many, sign_i4};
 pub(crate) use graph::count_work;
 pub use graph::{Graph, largest_number_bits, reset_largest_number_bits, work_count};
 pub use node::{Id, Node, Sym};

@@ -100,9 +100,10 @@ pub fn split(
             Kind::Both => errors.push(coupled(g, t, prog)),
         }
     }
-    let (mut iso_guards, mut fib_guards) = (Vec::new(), Vec::new());
+    let (mut iso_guards, mut fib_guards, mut params_only) = (Vec::new(), Vec::new(), Vec::new());
     for d in guards {
         match kind(g, d.arg) {
+            Kind::Iso if !g.uses_sigma(d.arg) && !g.uses_invariants(d.arg) => params_only.push(d),
             Kind::Iso => iso_guards.push(d),
             Kind::Fibre => fib_guards.push(d),
             Kind::Both => errors.push(coupled(g, d.arg, prog)),
@@ -112,9 +113,25 @@ pub fn split(
         errors.dedup();
         return Err(errors);
     }
+    let (iso, fibre) = (g.sum(&iso), g.sum(&fib));
+    // A condition on parameters only (`k2 ≠ 0` of k1/(2 k2)) goes with the
+    // part that still contains its argument (both if neither does).
+    let (in_iso, in_fib) = (g.reachable(&[iso]), g.reachable(&[fibre]));
+    for d in params_only {
+        let (a, b) = (
+            in_iso.binary_search(&d.arg).is_ok(),
+            in_fib.binary_search(&d.arg).is_ok(),
+        );
+        if a || !b {
+            iso_guards.push(d);
+        }
+        if b || !a {
+            fib_guards.push(d);
+        }
+    }
     Ok(Split {
-        iso: g.sum(&iso),
-        fibre: g.sum(&fib),
+        iso,
+        fibre,
         iso_guards,
         fibre_guards: fib_guards,
     })

@@ -1,0 +1,201 @@
+//! The library's fibre energies (energies/psi/fibre_*.psi, issue 16) three
+//! ways — generated Rust (`ecc_energies::fibre_by_name`), interpreted
+//! (`ecc_interp::fibre_from_module`) and the runtime's hand-written
+//! `ecc_runtime::energies::fibre_by_name` — agree on ψ and its five partials
+//! at random points incl. I4 < 0, I5 → 0 and large I5; the interpreted
+//! partials match central differences; the raw F-space Hessian's numeric
+//! eigenvalues are HOBAK's published ones (Kim & Eberle 2022 §7.3).
+
+use ecc_runtime::fibre::{fibre_f, i5_eigenvalues, invariant5};
+use ecc_runtime::{FibreDerivs, FibreEnergy, FibreUse, filter::Filter};
+use nalgebra::{SMatrix, SVector, SymmetricEigen};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// (library stem, hand-written runtime name, the FibreUse HOBAK's form implies).
+const FIBRES: [(&str, &str, FibreUse); 3] = [
+    ("fibre_arap", "fibre-arap", FibreUse::Both),
+    ("fibre_stvk", "fibre-stvk", FibreUse::I5),
+    ("fibre_fung", "fibre-fung", FibreUse::I5),
+];
+
+fn interpreted<const D: usize>(stem: &str, params: &[(String, f64)]) -> Box<dyn FibreEnergy<D>> {
+    let path = format!(
+        "{}/../../energies/psi/{stem}.psi",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let loaded = ecc_dsl::load_file(&path).unwrap();
+    let f = ecc_interp::fibre_from_module::<D>(&loaded.module, &path, params).unwrap();
+    Box::new(f.expect("a fibre part"))
+}
+
+fn arr(d: &FibreDerivs) -> [f64; 6] {
+    [d.psi, d.d4, d.d5, d.d44, d.d45, d.d55]
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    a == b || (a - b).abs() <= tol * (1.0 + a.abs().max(b.abs()))
+}
+
+/// Points (I4, I5): random, inverted fibre, I5 → 0, large stretch, I4 = 0.
+fn points() -> Vec<(f64, f64)> {
+    let mut rng = ChaCha8Rng::seed_from_u64(16);
+    let mut p: Vec<(f64, f64)> = (0..200)
+        .map(|_| (rng.gen_range(-2.0..2.0), rng.gen_range(1e-3..4.0)))
+        .collect();
+    p.extend([
+        (-0.5, 0.25),
+        (1e-8, 1e-12),
+        (-1e-8, 1e-12),
+        (3.0, 9.0),
+        (0.0, 1.0),
+        (1.0, 1.0),
+    ]);
+    p
+}
+
+#[test]
+fn generated_interpreted_and_hand_written_agree() {
+    let params = [("mu".to_string(), 2.5)];
+    for (stem, hand, uses) in FIBRES {
+        let over: &[(String, f64)] = if stem == "fibre_fung" { &[] } else { &params };
+        let interp = interpreted::<3>(stem, over);
+        let mut gen3 = ecc_energies::fibre_by_name::<3>(stem).unwrap();
+        let mut hand3 = ecc_runtime::energies::fibre_by_name::<3>(hand).unwrap();
+        for (n, v) in over {
+            gen3.set_fibre_param(n, *v).unwrap();
+            hand3.set_fibre_param(n, *v).unwrap();
+        }
+        assert_eq!(interp.uses(), uses, "{stem}");
+        assert_eq!(gen3.uses(), uses, "{stem}");
+        assert_eq!(interp.fibre_params(), gen3.fibre_params(), "{stem}");
+        for (i4, i5) in points() {
+            let (a, b, c) = (
+                arr(&interp.fibre(i4, i5)),
+                arr(&gen3.fibre(i4, i5)),
+                arr(&hand3.fibre(i4, i5)),
+            );
+            for k in 0..6 {
+                assert!(
+                    close(a[k], b[k], 1e-13),
+                    "{stem} {k} at ({i4}, {i5}): interp {} gen {}",
+                    a[k],
+                    b[k]
+                );
+                assert!(
+                    close(a[k], c[k], 1e-11),
+                    "{stem} {k} at ({i4}, {i5}): interp {} hand {}",
+                    a[k],
+                    c[k]
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn partials_match_central_differences() {
+    for (stem, _, _) in FIBRES {
+        let e = interpreted::<2>(stem, &[]);
+        for (i4, i5) in points()
+            .into_iter()
+            .filter(|(i4, i5)| i4.abs() > 1e-3 && *i5 > 1e-2 && *i5 < 3.0)
+        {
+            let h = 1e-6 * (1.0 + i5);
+            let f = |a: f64, b: f64| arr(&e.fibre(a, b));
+            let d = f(i4, i5);
+            let (p5, m5) = (f(i4, i5 + h), f(i4, i5 - h));
+            let (p4, m4) = (f(i4 + h, i5), f(i4 - h, i5));
+            let fd = |p: f64, m: f64| (p - m) / (2.0 * h);
+            let want = [
+                (d[1], fd(p4[0], m4[0])),
+                (d[2], fd(p5[0], m5[0])),
+                (d[3], fd(p4[1], m4[1])),
+                (d[4], fd(p5[1], m5[1])),
+                (d[5], fd(p5[2], m5[2])),
+            ];
+            for (k, (got, num)) in want.iter().enumerate() {
+                assert!(
+                    close(*got, *num, 1e-6),
+                    "{stem} partial {k} at ({i4}, {i5}): {got} vs {num}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn outside_the_domain_psi_is_infinite_never_nan() {
+    let e =
+        ecc_interp::load_source::<3>("fiber a\npsi = I2 - 3 + log(I5)^2", "t.psi", &[]).unwrap();
+    let _ = e; // the isotropic part loads like any energy
+    let m = ecc_dsl::compile("fiber a\npsi = I2 - 3 + log(I5)^2", "t").unwrap();
+    let f = ecc_interp::fibre_from_module::<3>(&m, "t.psi", &[])
+        .unwrap()
+        .unwrap();
+    assert_eq!(f.fibre(1.0, 0.0).psi, f64::INFINITY);
+    assert!(f.fibre(1.0, 2.0).psi.is_finite());
+    let m = ecc_dsl::compile("fiber a\npsi = exp(log(I4))", "t").unwrap();
+    let f = ecc_interp::fibre_from_module::<3>(&m, "t.psi", &[])
+        .unwrap()
+        .unwrap();
+    assert_eq!(f.fibre(-0.5, 1.0).psi, f64::INFINITY, "I4 > 0 as written");
+    assert_eq!(f.fibre(0.5, 1.0).psi, 0.5);
+}
+
+/// HOBAK's eigenvalues (Kim & Eberle 2022 §7.3): (along, across).
+fn published(stem: &str, i4: f64, i5: f64) -> (f64, f64) {
+    let (mu, k1, k2) = (1.0, 1.0, 1.0);
+    match stem {
+        "fibre_arap" => {
+            let s = if i4 > 0.0 { 1.0 } else { -1.0 };
+            (mu, mu * (1.0 - s / i5.sqrt()))
+        }
+        "fibre_stvk" => (2.0 * mu * (i5 - 1.0) + 4.0 * mu * i5, 2.0 * mu * (i5 - 1.0)),
+        _ => {
+            let t = i5 - 1.0;
+            let e = (k2 * t * t).exp();
+            (
+                2.0 * e * k1 * t + 4.0 * e * k1 * (1.0 + 2.0 * k2 * t * t) * i5,
+                2.0 * e * k1 * t,
+            )
+        }
+    }
+}
+
+#[test]
+fn raw_hessian_eigenvalues_are_hobaks_published_forms() {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    for (stem, _, _) in FIBRES {
+        let e = ecc_energies::fibre_by_name::<3>(stem).unwrap();
+        for trial in 0..40 {
+            let mut f = SMatrix::<f64, 3, 3>::from_fn(|_, _| rng.gen_range(-1.5..1.5));
+            if trial % 4 == 0 {
+                f = -f; // inverted elements, fibre along the flipped axes
+            }
+            let a = SVector::<f64, 3>::from_fn(|_, _| rng.gen_range(-1.0..1.0)).normalize();
+            let p = fibre_f(&*e, &f, &a, Filter::None, true);
+            let eig = SymmetricEigen::new(p.hess).eigenvalues;
+            let i5 = invariant5(&f, &a);
+            let i4 = ecc_runtime::fibre::invariant4(&f, &a);
+            let (along, across) = published(stem, i4, i5);
+            let [l_al, l_ac, _] = i5_eigenvalues(&e.fibre(i4, i5), i5);
+            assert!(
+                close(l_al, along, 1e-10) && close(l_ac, across, 1e-10),
+                "{stem}"
+            );
+            // multiset {along ×1, across ×2, 0 ×6} against the numeric eigensolve
+            let mut want = vec![along, across, across, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            let mut got: Vec<f64> = eig.iter().copied().collect();
+            want.sort_by(f64::total_cmp);
+            got.sort_by(f64::total_cmp);
+            let scale = want.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+            for (g, w) in got.iter().zip(&want) {
+                assert!(
+                    (g - w).abs() <= 1e-9 * scale,
+                    "{stem} F = {f}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+}
