@@ -336,3 +336,67 @@ where
         std::array::from_fn(|k| std::array::from_fn(|i| eig.eigenvectors[(i, k)])),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{SymEigen, kernel, sym_eigen_n, sym_eigen_nalgebra};
+    use crate::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
+    use crate::reference::cases::{compose, hard_cases_2d, hard_cases_3d, rng, rotation};
+    use crate::{Energy, Filter, Rest};
+
+    /// The kernel with the Jacobi eigensolver equals the kernel with nalgebra's
+    /// `SymmetricEigen` to 1e-12 of the raw element Hessian, at every hard case.
+    fn jacobi_vs_nalgebra<const D: usize, const K: usize, const R: usize, const N: usize>(
+        e: &dyn Energy<D>,
+        rest: &Rest<D>,
+        sigmas: &[(&str, [f64; D])],
+        (jacobi, nalgebra): (SymEigen<R>, SymEigen<R>),
+    ) -> usize {
+        let cg = rest.congruence();
+        let mut r = rng(31);
+        let mut compared = 0;
+        for (name, sigma) in sigmas {
+            for _ in 0..3 {
+                let f = compose(&rotation::<D>(&mut r), sigma, &rotation::<D>(&mut r));
+                for filter in [Filter::Clamp, Filter::Abs, Filter::ClampEps(1e-3)] {
+                    let run = |eig| kernel::<D, K, R, N, _>(e, &f, rest, &cg, filter, true, eig);
+                    let (a, b) = (run(jacobi), run(nalgebra));
+                    let raw =
+                        kernel::<D, K, R, N, _>(e, &f, rest, &cg, Filter::None, true, jacobi).2;
+                    let scale = raw.iter().flatten().fold(1.0f64, |m, x| m.max(x.abs()));
+                    if !scale.is_finite() {
+                        continue;
+                    }
+                    let err = (0..N)
+                        .flat_map(|i| (0..N).map(move |j| (i, j)))
+                        .fold(0.0f64, |m, (i, j)| m.max((a.2[i][j] - b.2[i][j]).abs()));
+                    assert!(
+                        err <= 1e-12 * scale,
+                        "{} {name} {filter:?}: {err:e}",
+                        e.name()
+                    );
+                    compared += 1;
+                }
+            }
+        }
+        compared
+    }
+
+    #[test]
+    fn jacobi_equals_nalgebra_eigensolve_at_the_hard_cases() {
+        let snh = StableNeoHookean::new(1.3, 4.1);
+        let tri = Rest::<2>::new([[0.0, 0.0], [3.0, 0.0], [1.4, 0.08]]).unwrap();
+        let tet =
+            Rest::<3>::new([[0.0; 3], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.9, 1.1, 0.05]]).unwrap();
+        let c2: Vec<_> = hard_cases_2d().iter().map(|c| (c.name, c.sigma)).collect();
+        let c3: Vec<_> = hard_cases_3d().iter().map(|c| (c.name, c.sigma)).collect();
+        let mut n = 0;
+        for e in [&Arap as &dyn Energy<2>, &SymmetricDirichlet, &snh] {
+            n += jacobi_vs_nalgebra::<2, 3, 4, 6>(e, &tri, &c2, (sym_eigen_n, sym_eigen_nalgebra));
+        }
+        for e in [&Arap as &dyn Energy<3>, &SymmetricDirichlet, &snh] {
+            n += jacobi_vs_nalgebra::<3, 4, 9, 12>(e, &tet, &c3, (sym_eigen_n, sym_eigen_nalgebra));
+        }
+        assert!(n > 300, "only {n} comparisons");
+    }
+}
