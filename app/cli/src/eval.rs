@@ -36,6 +36,15 @@ pub struct EvalArgs {
     /// Print one JSON object (the documented contract) instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// The fibre direction "ax ay [az]" of an energy with `fiber a`
+    /// (normalised); adds the `fibre` object (I4, I5, ψ, eigenvalues).
+    #[arg(
+        long = "fiber",
+        alias = "fibre",
+        value_name = "DIR",
+        allow_hyphen_values = true
+    )]
+    pub fiber: Option<String>,
 }
 
 const EVAL_HELP: &str = "\
@@ -46,6 +55,10 @@ JSON output (--json), one object:
   hessian_projected  the same with negative eigenvalues clamped to 0
   eigenvalues        the d² eigenvalues of the raw Hessian, ascending
   plus energy, file, dim, path, params, F, sigma, domain, finite.
+  fibre              (only with --fiber, for an energy with `fiber a`) the
+                     fibre part: direction, I4, I5, domain, psi, partials,
+                     gradient, eigenvalues, eigensystem; psi above is then
+                     the isotropic part, the total is their sum.
 
 Non-finite numbers (JSON has no Infinity/NaN) are written as null:
   * F outside the energy's domain (Ψ = +∞, e.g. det F ≤ 0 for a log barrier,
@@ -67,8 +80,8 @@ pub fn run(args: &EvalArgs) -> Result<(), CliError> {
     let f = parse_matrix(&args.f, args.dim.map(usize::from))?;
     let loaded = load(&args.file)?;
     let text = match f.dim() {
-        2 => eval_dim::<2>(&loaded, &f, &params, args.json)?,
-        _ => eval_dim::<3>(&loaded, &f, &params, args.json)?,
+        2 => eval_dim::<2>(&loaded, &f, &params, args)?,
+        _ => eval_dim::<3>(&loaded, &f, &params, args)?,
     };
     print_stdout(&text)
 }
@@ -77,7 +90,7 @@ fn eval_dim<const D: usize>(
     loaded: &Loaded,
     f: &MatrixArg,
     params: &[(String, f64)],
-    as_json: bool,
+    args: &EvalArgs,
 ) -> Result<String, CliError>
 where
     ecc_runtime::Space<D>: ecc_runtime::Dim<D>,
@@ -85,6 +98,7 @@ where
     let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
     let m = SMatrix::<f64, D, D>::from_fn(|r, c| f.rows[r][c]);
     let point = evaluate::<D>(&energy, &m);
+    let fibre = crate::eval_fibre::fibre_value::<D>(loaded, params, &m, args.fiber.as_deref())?;
     let meta = Meta {
         energy: &loaded.name,
         file: &loaded.shown,
@@ -95,10 +109,15 @@ where
         params: energy.params(),
         f: &f.rows,
     };
-    if as_json {
-        to_json(&meta, &point)
-    } else {
-        Ok(to_table(&meta, &point))
+    match (args.json, fibre) {
+        (true, None) => to_json(&meta, &point),
+        (true, Some(v)) => crate::eval_fibre::append_to_json(&to_json(&meta, &point)?, &v),
+        (false, None) => Ok(to_table(&meta, &point)),
+        (false, Some(v)) => Ok(format!(
+            "{}fibre: {}\n",
+            to_table(&meta, &point),
+            serde_json::to_string(&v)?
+        )),
     }
 }
 

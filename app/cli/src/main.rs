@@ -8,6 +8,7 @@ mod demo;
 mod emit;
 mod error;
 mod eval;
+mod eval_fibre;
 mod eval_json;
 mod input;
 mod output;
