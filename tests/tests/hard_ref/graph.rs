@@ -94,6 +94,8 @@ impl PsiGraph {
                     Sym::I3 => i3,
                     Sym::Sigma(k) => sigma.get(k as usize).copied().unwrap_or(Dd::NAN),
                     Sym::Param(k) => self.params.get(k as usize).copied().unwrap_or(Dd::NAN),
+                    // Isotropic Ψ only: fibre leaves never occur here.
+                    Sym::I4 | Sym::I5 | Sym::SignI4 => Dd::NAN,
                 },
                 Node::Add(c) => c.iter().fold(Dd::ZERO, |s, k| s + v[k.index()]),
                 Node::Mul(c) => c.iter().fold(Dd::ONE, |s, k| s * v[k.index()]),
