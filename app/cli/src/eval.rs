@@ -95,7 +95,8 @@ fn eval_dim<const D: usize>(
 where
     ecc_runtime::Space<D>: ecc_runtime::Dim<D>,
 {
-    let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
+    // The isotropic part; the fibre part (if any) is `fibre_value` below.
+    let energy = ecc_interp::iso_part_from_module::<D>(&loaded.module, &loaded.shown, params)?;
     let m = SMatrix::<f64, D, D>::from_fn(|r, c| f.rows[r][c]);
     let point = evaluate::<D>(&energy, &m);
     let fibre = crate::eval_fibre::fibre_value::<D>(loaded, params, &m, args.fiber.as_deref())?;

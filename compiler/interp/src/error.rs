@@ -82,6 +82,21 @@ pub enum LoadError {
         /// What is wrong with the parameter.
         source: ParamError,
     },
+    /// The energy declares `fiber a`: its second part ψ(I4, I5) would be
+    /// dropped by an entry point that evaluates isotropic energies, so the
+    /// load is refused instead of silently evaluating Ψ_iso alone.
+    #[error(
+        "`{path}` declares `fiber {direction}`: its fibre part ψ(I4, I5) cannot be evaluated here \
+         (only the isotropic part would be, a different energy); `ecc eval --fiber` evaluates it, \
+         and the library API is ecc_interp::fibre_from_module; scenes, `ecc check` and the Python \
+         package take .psi fibre energies in a later release"
+    )]
+    FibrePart {
+        /// The file name.
+        path: String,
+        /// The declared direction's name.
+        direction: String,
+    },
     /// The compiled IR could not be interpreted (a compiler bug).
     #[error("`{path}`: {source}")]
     Build {

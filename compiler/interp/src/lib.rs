@@ -45,6 +45,7 @@ pub use energy::InterpEnergy;
 pub use error::{BuildError, LoadError};
 pub use fibre::{InterpFibre, fibre_from_module, fibre_use};
 pub use load::{
-    compile_module, energy_from_module, energy_name, load_psi, load_source, param_values,
+    compile_module, energy_from_module, energy_name, iso_part_from_module, load_psi, load_source,
+    param_values,
 };
 pub use tape::Tape;

@@ -80,7 +80,26 @@ pub fn param_values(module: &Module, overrides: &[(String, f64)]) -> Result<Vec<
 }
 
 /// The `D`-dimensional energy of a compiled module with parameter overrides.
+/// A module with a fibre part (`fiber a`) is refused
+/// ([`LoadError::FibrePart`]): this is the whole energy only when it is
+/// isotropic. [`iso_part_from_module`] is the explicit isotropic part.
 pub fn energy_from_module<const D: usize>(
+    module: &Module,
+    file_name: &str,
+    params: &[(String, f64)],
+) -> Result<InterpEnergy<D>, LoadError> {
+    if let Some(f) = module.dims.iter().find_map(|d| d.fibre.as_ref()) {
+        return Err(LoadError::FibrePart {
+            path: file_name.to_string(),
+            direction: f.direction.clone(),
+        });
+    }
+    iso_part_from_module(module, file_name, params)
+}
+
+/// The isotropic part Ψ_iso of a compiled module (the whole energy when it
+/// declares no `fiber`); pair it with [`crate::fibre_from_module`] for ψ(I4, I5).
+pub fn iso_part_from_module<const D: usize>(
     module: &Module,
     file_name: &str,
     params: &[(String, f64)],

@@ -126,10 +126,9 @@ fn partials_match_central_differences() {
 
 #[test]
 fn outside_the_domain_psi_is_infinite_never_nan() {
-    let e =
-        ecc_interp::load_source::<3>("fiber a\npsi = I2 - 3 + log(I5)^2", "t.psi", &[]).unwrap();
-    let _ = e; // the isotropic part loads like any energy
     let m = ecc_dsl::compile("fiber a\npsi = I2 - 3 + log(I5)^2", "t").unwrap();
+    // The isotropic part loads like any energy when asked for explicitly.
+    ecc_interp::iso_part_from_module::<3>(&m, "t.psi", &[]).unwrap();
     let f = ecc_interp::fibre_from_module::<3>(&m, "t.psi", &[])
         .unwrap()
         .unwrap();
@@ -198,4 +197,29 @@ fn raw_hessian_eigenvalues_are_hobaks_published_forms() {
             }
         }
     }
+}
+
+/// The whole-energy entry points refuse a fibre energy instead of silently
+/// evaluating its isotropic part alone (a different energy).
+#[test]
+fn whole_energy_loaders_refuse_a_fibre_part() {
+    let src = "fiber a\nparam k = 2\npsi = I2 - 3 + k*(I5 - 1)^2";
+    for err in [
+        ecc_interp::load_source::<3>(src, "t.psi", &[]).err(),
+        ecc_interp::load_source::<2>(src, "t.psi", &[]).err(),
+        ecc_interp::load_psi::<3>("../../energies/psi/fibre_stvk.psi", &[]).err(),
+    ] {
+        let err = err.expect("a fibre energy must not load as an isotropic one");
+        assert!(
+            matches!(err, ecc_interp::LoadError::FibrePart { .. }),
+            "{err}"
+        );
+        let text = err.to_string();
+        assert!(
+            text.contains("fiber a") && text.contains("--fiber"),
+            "{text}"
+        );
+    }
+    // An isotropic energy still loads.
+    ecc_interp::load_source::<3>("psi = I2 - 3", "t.psi", &[]).unwrap();
 }
