@@ -561,30 +561,12 @@ fn guard_text(plan: &Plan, dim: u8, g: &Guard) -> String {
 
 fn spectral_fn(ctx: &Ctx, d: &DimIr) -> String {
     let n = d.dim;
-    let dim = n as usize;
-    let sp = &d.spectral;
     let (roots, guards) = spectral_roots(d);
     let mut taken = ctx.taken();
     taken.extend(guards.iter().map(|g| g.var.as_str()));
     let namer = |s: Sym| ctx.leaf_name(s);
     let plan = Plan::new(&d.graph, n, &roots, &hints(d), &namer, &taken);
-    // The stretches the guards and pole tests read.
-    let poles = sp
-        .twist_kind
-        .iter()
-        .chain(&sp.flip_kind)
-        .enumerate()
-        .filter(|(_, k)| **k == PairKind::Pole)
-        .map(|(slot, _)| slot % sp.twist.len().max(1));
-    let extra: Vec<usize> = guards
-        .iter()
-        .map(|g| g.slot)
-        .chain(poles)
-        .flat_map(|slot| {
-            let (i, j) = pair_label(n, slot);
-            [i - 1, j - 1]
-        })
-        .collect();
+    let extra = guarded_stretches(d, &guards);
     let mut s = format!(
         "    /// Ψ, ∂Ψ/∂σ, A = ∂²Ψ/∂σ² and the twist/flip eigenvalues of each pair slot\n\
          \x20   /// in {n}D (Smith et al. 2019 eqs. 22–23, Zhu 2020 eq. 28).\n\
@@ -610,7 +592,7 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> String {
         s,
         "        ::ecc::Spectral<{n}> out{{}};\n        out.psi = {psi};"
     );
-    for (i, &g) in sp.grad.iter().enumerate() {
+    for (i, &g) in d.spectral.grad.iter().enumerate() {
         let _ = writeln!(
             s,
             "        out.grad[{i}] = {};  // ∂Ψ/∂σ{}",
@@ -618,7 +600,40 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> String {
             i + 1
         );
     }
-    match &sp.scale {
+    s.push_str(&scale_lines(&plan, d));
+    s.push_str(&pair_lines(&plan, d));
+    s.push_str("        return out;\n    }\n");
+    s
+}
+
+/// The (0-based) stretches that the guards and the pole tests read, so the
+/// prelude names them.
+fn guarded_stretches(d: &DimIr, guards: &[Guard]) -> Vec<usize> {
+    let sp = &d.spectral;
+    let poles = sp
+        .twist_kind
+        .iter()
+        .chain(&sp.flip_kind)
+        .enumerate()
+        .filter(|(_, k)| **k == PairKind::Pole)
+        .map(|(slot, _)| slot % sp.twist.len().max(1));
+    guards
+        .iter()
+        .map(|g| g.slot)
+        .chain(poles)
+        .flat_map(|slot| {
+            let (i, j) = pair_label(d.dim, slot);
+            [i - 1, j - 1]
+        })
+        .collect()
+}
+
+/// `out.diagonal` and the scaling block A = ∂²Ψ/∂σ² (Smith et al. 2019
+/// Appendix D): its diagonal when A is proved diagonal, else every entry.
+fn scale_lines(plan: &Plan, d: &DimIr) -> String {
+    let dim = d.dim as usize;
+    let mut s = String::new();
+    match &d.spectral.scale {
         ScaleIr::Diagonal(a) => {
             s.push_str(
                 "        out.diagonal = true;  // A_ij ≡ 0 for i ≠ j (proved): no eigensolve\n",
@@ -645,6 +660,15 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> String {
             }
         }
     }
+    s
+}
+
+/// `out.twist[slot]` and `out.flip[slot]` (Smith et al. 2019 eqs. 22–23):
+/// exact values, +∞ exactly on a genuine pole's plane, or the guarded
+/// variable computed by `guard_text`.
+fn pair_lines(plan: &Plan, d: &DimIr) -> String {
+    let (n, sp) = (d.dim, &d.spectral);
+    let mut s = String::new();
     for (kind, list, kinds) in [
         ("twist", &sp.twist, &sp.twist_kind),
         ("flip", &sp.flip, &sp.flip_kind),
@@ -671,7 +695,6 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> String {
             let _ = writeln!(s, "        out.{kind}[{slot}] = {v};");
         }
     }
-    s.push_str("        return out;\n    }\n");
     s
 }
 

@@ -458,6 +458,12 @@ impl Resolver<'_> {
             self.scope.insert(name.into(), Def::Param(k, span));
             return RExpr::Param(k);
         }
+        self.unknown_ident(name, span)
+    }
+
+    /// An identifier that names nothing: a located error with a suggestion
+    /// (or the later definition it would need), then poison.
+    fn unknown_ident(&mut self, name: &str, span: Span) -> RExpr {
         let known: Vec<&str> = BUILTINS
             .iter()
             .chain(ALIASES.iter())
