@@ -314,24 +314,16 @@ fn push_update(
     }
 }
 
-/// The finite modes' sum (exactly symmetric) and, when some mode is ±∞,
-/// the infinite modes' P (see the module docs).
+/// Shift c: a repeated non-zero value among the pair eigenvalues and, when Â
+/// is diagonal, its diagonal (0 when no value repeats). Repeats come from
+/// energies whose Hessian is c·I plus a low-rank part (ARAP, co-rotational:
+/// flips = scales = 2μ), so only the first flip, twist and scale value are
+/// tried as candidates.
 #[inline(always)]
-fn modal_parts<const D: usize, const M: usize, const R: usize>(
-    u: &[[f64; D]; D],
-    w: &[[f64; M]; D],
-    f: &Filtered<D>,
-    weight: f64,
-) -> ([[f64; R]; R], Option<[[f64; R]; R]>) {
-    debug_assert_eq!(R, D * M);
-    let pairs = Spectral::<D>::PAIRS;
-    // Shift c: a repeated non-zero value among the pair eigenvalues and, when Â
-    // is diagonal, its diagonal. Repeats come from energies whose Hessian is
-    // c·I plus a low-rank part (ARAP, co-rotational: flips = scales = 2μ), so
-    // only the first flip, twist and scale value are tried as candidates.
+fn repeated_shift<const D: usize>(f: &Filtered<D>) -> f64 {
     let mut vals = [0.0; 9];
     let mut nc = 0;
-    for k in 0..pairs {
+    for k in 0..Spectral::<D>::PAIRS {
         vals[nc] = f.twist[k];
         vals[nc + 1] = f.flip[k];
         nc += 2;
@@ -353,12 +345,18 @@ fn modal_parts<const D: usize, const M: usize, const R: usize>(
             }
         }
     }
+    shift
+}
 
-    // Left/right vectors and coefficients of the updates H += coef · l rᵀ.
-    let mut vecs = [[0.0; R]; 12];
-    let mut upd: [(usize, usize, f64); 9] = [(0, 0, 0.0); 9];
-    let mut inf: [(usize, f64); 9] = [(0, 0.0); 9];
-    let (mut nv, mut nu, mut ni) = (0usize, 0usize, 0usize);
+/// The upper triangle of c·(G ⊗ I), c = shift·weight, G_nq = Σ_b w_b[n]
+/// w_b[q]: the shift's share (all modes at once) of the element Hessian
+/// (zero when the shift is 0).
+#[inline(always)]
+fn shifted_metric<const D: usize, const M: usize, const R: usize>(
+    w: &[[f64; M]; D],
+    shift: f64,
+    weight: f64,
+) -> [[f64; R]; R] {
     let mut h = [[0.0; R]; R];
     if shift != 0.0 {
         let c = shift * weight;
@@ -374,6 +372,53 @@ fn modal_parts<const D: usize, const M: usize, const R: usize>(
             }
         }
     }
+    h
+}
+
+/// H += Σ coef · l rᵀ over the updates, upper triangle row by row (the row
+/// stays in registers across updates), then mirrored to the lower triangle.
+#[inline(always)]
+fn apply_updates<const R: usize>(
+    h: &mut [[f64; R]; R],
+    vecs: &[[f64; R]; 12],
+    upd: &[(usize, usize, f64)],
+) {
+    for i in 0..R {
+        let mut row = h[i];
+        for &(l, r, c) in upd {
+            let ci = c * vecs[l][i];
+            let rv = &vecs[r];
+            for j in 0..R {
+                row[j] += ci * rv[j];
+            }
+        }
+        h[i] = row;
+    }
+    for i in 0..R {
+        for j in (i + 1)..R {
+            h[j][i] = h[i][j];
+        }
+    }
+}
+
+/// The finite modes' sum (exactly symmetric) and, when some mode is ±∞,
+/// the infinite modes' P (see the module docs).
+#[inline(always)]
+fn modal_parts<const D: usize, const M: usize, const R: usize>(
+    u: &[[f64; D]; D],
+    w: &[[f64; M]; D],
+    f: &Filtered<D>,
+    weight: f64,
+) -> ([[f64; R]; R], Option<[[f64; R]; R]>) {
+    debug_assert_eq!(R, D * M);
+    let pairs = Spectral::<D>::PAIRS;
+    let shift = repeated_shift(f);
+    // Left/right vectors and coefficients of the updates H += coef · l rᵀ.
+    let mut vecs = [[0.0; R]; 12];
+    let mut upd: [(usize, usize, f64); 9] = [(0, 0, 0.0); 9];
+    let mut inf: [(usize, f64); 9] = [(0, 0.0); 9];
+    let (mut nv, mut nu, mut ni) = (0usize, 0usize, 0usize);
+    let mut h = shifted_metric::<D, M, R>(w, shift, weight);
     // Scaling part: Σ_ij (Â − cI)_ij p_ii p_jjᵀ.
     let mut sc = f.scale;
     for i in 0..D {
@@ -433,23 +478,7 @@ fn modal_parts<const D: usize, const M: usize, const R: usize>(
             nv += 1;
         }
     }
-    // Upper triangle, row by row (the row stays in registers across updates).
-    for i in 0..R {
-        let mut row = h[i];
-        for &(l, r, c) in &upd[..nu] {
-            let ci = c * vecs[l][i];
-            let rv = &vecs[r];
-            for j in 0..R {
-                row[j] += ci * rv[j];
-            }
-        }
-        h[i] = row;
-    }
-    for i in 0..R {
-        for j in (i + 1)..R {
-            h[j][i] = h[i][j];
-        }
-    }
+    apply_updates(&mut h, &vecs, &upd[..nu]);
     let p = if ni > 0 {
         Some(infinite_part(&vecs, &inf[..ni]))
     } else {

@@ -224,15 +224,7 @@ impl<const D: usize> Assembler<D> {
                         );
                         // SAFETY: index s is owned by this task (each stencil appears once).
                         unsafe { psi_ptr.set(s, psi) };
-                        let what = if !psi.is_finite() {
-                            1
-                        } else if lg.iter().any(|v| !v.is_finite()) {
-                            2
-                        } else if filter.is_some() && lh.iter().any(|v| !v.is_finite()) {
-                            3
-                        } else {
-                            0
-                        };
+                        let what = non_finite_kind(psi, lg, filter.map(|_| &*lh));
                         if what != 0 {
                             bad.fetch_min(s * 4 + what, Ordering::Relaxed);
                             return;
@@ -264,16 +256,7 @@ impl<const D: usize> Assembler<D> {
             }
             let b = bad.load(Ordering::Relaxed);
             if b != usize::MAX {
-                let quantity = match b % 4 {
-                    1 => "energy",
-                    2 => "gradient",
-                    _ => "hessian",
-                };
-                return Err(NonFiniteStencil {
-                    term: term.name().to_string(),
-                    stencil: b / 4,
-                    quantity: quantity.into(),
-                });
+                return Err(non_finite_stencil(term.name(), b));
             }
             let psi = &self.psi[ti];
             total += sum_indexed(psi.len(), &mut self.partials, |s| psi[s]);
@@ -334,5 +317,35 @@ impl<const D: usize> Assembler<D> {
             tm.assembly_seconds += t0.elapsed().as_secs_f64();
         }
         scale * total
+    }
+}
+
+/// What a stencil produced that is not finite: 0 nothing, 1 its energy,
+/// 2 its gradient, 3 its (requested) Hessian — the first in that order.
+#[inline]
+fn non_finite_kind(psi: f64, lg: &[f64], lh: Option<&[f64]>) -> usize {
+    if !psi.is_finite() {
+        1
+    } else if lg.iter().any(|v| !v.is_finite()) {
+        2
+    } else if lh.is_some_and(|h| h.iter().any(|v| !v.is_finite())) {
+        3
+    } else {
+        0
+    }
+}
+
+/// The error for the first bad stencil, encoded as `stencil·4 + kind`
+/// (kind from [`non_finite_kind`]).
+fn non_finite_stencil(term: &str, code: usize) -> NonFiniteStencil {
+    let quantity = match code % 4 {
+        1 => "energy",
+        2 => "gradient",
+        _ => "hessian",
+    };
+    NonFiniteStencil {
+        term: term.to_string(),
+        stencil: code / 4,
+        quantity: quantity.into(),
     }
 }
