@@ -759,19 +759,30 @@ fn spectral_fn(ctx: &Ctx, d: &DimIr) -> TokenStream {
 
 /// `params()` and `set_param()` (only when the energy has parameters).
 fn param_fns(ctx: &Ctx) -> TokenStream {
-    let params = &ctx.module.params;
-    if params.is_empty() {
+    let names: Vec<&str> = ctx.module.params.iter().map(|p| p.name.as_str()).collect();
+    let (get, set) = (format_ident!("params"), format_ident!("set_param"));
+    param_methods(&ctx.rt, &names, &ctx.fields, &get, &set)
+}
+
+/// The getter `get()` (name, value) pairs and the setter `set(name, value)`
+/// over the struct fields `fields` of the parameters `names` (nothing when
+/// there are none): shared by `Energy` and `FibreEnergy` impls.
+pub(crate) fn param_methods(
+    rt: &TokenStream,
+    names: &[&str],
+    fields: &[Ident],
+    get: &Ident,
+    set: &Ident,
+) -> TokenStream {
+    if names.is_empty() {
         return TokenStream::new();
     }
-    let rt = &ctx.rt;
-    let names: Vec<&str> = params.iter().map(|p| p.name.as_str()).collect();
-    let fields = &ctx.fields;
     quote! {
-        fn params(&self) -> Vec<(String, f64)> {
+        fn #get(&self) -> Vec<(String, f64)> {
             vec![#((#names.to_string(), self.#fields)),*]
         }
 
-        fn set_param(&mut self, name: &str, value: f64) -> Result<(), #rt::ParamError> {
+        fn #set(&mut self, name: &str, value: f64) -> Result<(), #rt::ParamError> {
             if !value.is_finite() {
                 return Err(#rt::ParamError::NotFinite { name: name.to_string(), value });
             }

@@ -179,31 +179,9 @@ fn inside(f: &FibreIr, plan: &Plan) -> TokenStream {
 
 /// `fibre_params()` and `set_fibre_param()` over the shared parameters.
 fn param_fns(c: &FibreCtx) -> TokenStream {
-    if c.names.is_empty() {
-        return TokenStream::new();
-    }
-    let rt = c.rt;
-    let names = &c.names;
-    let fields = c.fields;
-    quote! {
-        fn fibre_params(&self) -> Vec<(String, f64)> {
-            vec![#((#names.to_string(), self.#fields)),*]
-        }
-
-        fn set_fibre_param(&mut self, name: &str, value: f64) -> Result<(), #rt::ParamError> {
-            if !value.is_finite() {
-                return Err(#rt::ParamError::NotFinite { name: name.to_string(), value });
-            }
-            match name {
-                #(#names => self.#fields = value,)*
-                _ => {
-                    return Err(#rt::ParamError::Unknown {
-                        name: name.to_string(),
-                        known: vec![#(#names.to_string()),*],
-                    });
-                }
-            }
-            Ok(())
-        }
-    }
+    let (get, set) = (
+        format_ident!("fibre_params"),
+        format_ident!("set_fibre_param"),
+    );
+    crate::energy::param_methods(c.rt, &c.names, c.fields, &get, &set)
 }

@@ -305,21 +305,29 @@ impl<const D: usize> Energy<D> for InterpEnergy<D> {
     }
 
     fn set_param(&mut self, name: &str, value: f64) -> Result<(), ParamError> {
-        let Some(k) = self.param_names.iter().position(|n| n == name) else {
-            return Err(ParamError::Unknown {
-                name: name.to_string(),
-                known: self.param_names.clone(),
-            });
-        };
-        if !value.is_finite() {
-            return Err(ParamError::NotFinite {
-                name: name.to_string(),
-                value,
-            });
-        }
+        let k = param_slot(&self.param_names, name, value)?;
         self.param_values[k] = value;
         self.psi_frozen = self.psi_tape.freeze(&self.param_values);
         self.full_frozen = self.full_tape.freeze(&self.param_values);
         Ok(())
     }
+}
+
+/// The slot of parameter `name` among `names` for a new `value`: unknown
+/// names and non-finite values are [`ParamError`]s (shared by the isotropic
+/// and the fibre energies' setters).
+pub(crate) fn param_slot(names: &[String], name: &str, value: f64) -> Result<usize, ParamError> {
+    let Some(k) = names.iter().position(|n| n == name) else {
+        return Err(ParamError::Unknown {
+            name: name.to_string(),
+            known: names.to_vec(),
+        });
+    };
+    if !value.is_finite() {
+        return Err(ParamError::NotFinite {
+            name: name.to_string(),
+            value,
+        });
+    }
+    Ok(k)
 }

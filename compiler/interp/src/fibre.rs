@@ -131,18 +131,7 @@ impl<const D: usize> FibreEnergy<D> for InterpFibre<D> {
     }
 
     fn set_fibre_param(&mut self, name: &str, value: f64) -> Result<(), ParamError> {
-        let Some(k) = self.param_names.iter().position(|n| n == name) else {
-            return Err(ParamError::Unknown {
-                name: name.to_string(),
-                known: self.param_names.clone(),
-            });
-        };
-        if !value.is_finite() {
-            return Err(ParamError::NotFinite {
-                name: name.to_string(),
-                value,
-            });
-        }
+        let k = crate::energy::param_slot(&self.param_names, name, value)?;
         self.param_values[k] = value;
         self.frozen = self.tape.freeze(&self.param_values);
         Ok(())
