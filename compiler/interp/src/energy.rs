@@ -102,18 +102,7 @@ impl<const D: usize> InterpEnergy<D> {
         }
         let g = &ir.graph;
         let param_names = g.param_names().to_vec();
-        if params.len() != param_names.len() {
-            return Err(BuildError::ParamCount {
-                expected: param_names.len(),
-                found: params.len(),
-            });
-        }
-        if let Some((k, &v)) = params.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(BuildError::Param(ParamError::NotFinite {
-                name: param_names[k].clone(),
-                value: v,
-            }));
-        }
+        check_params(&param_names, params)?;
         let mut roots = vec![ir.psi];
         match ir.path {
             Path::Invariant => {
@@ -330,4 +319,22 @@ pub(crate) fn param_slot(names: &[String], name: &str, value: f64) -> Result<usi
         });
     }
     Ok(k)
+}
+
+/// The parameter values a tape is built with: one per declared name, all
+/// finite (shared by [`InterpEnergy`] and the fibre part's constructor).
+pub(crate) fn check_params(param_names: &[String], params: &[f64]) -> Result<(), BuildError> {
+    if params.len() != param_names.len() {
+        return Err(BuildError::ParamCount {
+            expected: param_names.len(),
+            found: params.len(),
+        });
+    }
+    if let Some((k, &v)) = params.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(BuildError::Param(ParamError::NotFinite {
+            name: param_names[k].clone(),
+            value: v,
+        }));
+    }
+    Ok(())
 }

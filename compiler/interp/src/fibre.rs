@@ -54,18 +54,7 @@ impl<const D: usize> InterpFibre<D> {
             return Ok(None);
         };
         let param_names = f.graph.param_names().to_vec();
-        if params.len() != param_names.len() {
-            return Err(BuildError::ParamCount {
-                expected: param_names.len(),
-                found: params.len(),
-            });
-        }
-        if let Some((k, &v)) = params.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Err(BuildError::Param(ParamError::NotFinite {
-                name: param_names[k].clone(),
-                value: v,
-            }));
-        }
+        crate::energy::check_params(&param_names, params)?;
         let mut roots = f.roots().to_vec();
         roots.extend(f.active_guards().map(|d| d.arg));
         let tape = Tape::compile(&f.graph, &roots)?;

@@ -5,6 +5,7 @@
 
 mod common;
 
+use common::fibre_energies::{I4Only, Mixed};
 use common::{compose, rng, rotation};
 
 use ecc_runtime::fibre::{
@@ -29,46 +30,6 @@ impl<const D: usize> FibreEnergy<D> for Bare {
     }
     fn uses(&self) -> FibreUse {
         FibreUse::I4
-    }
-}
-
-/// ψ = (I4 − 1)² + 0.1 I4³.
-struct I4Only;
-impl<const D: usize> FibreEnergy<D> for I4Only {
-    fn name(&self) -> &str {
-        "i4-only"
-    }
-    fn fibre(&self, i4: f64, _i5: f64) -> FibreDerivs {
-        FibreDerivs {
-            psi: (i4 - 1.0).powi(2) + 0.1 * i4.powi(3),
-            d4: 2.0 * (i4 - 1.0) + 0.3 * i4 * i4,
-            d44: 2.0 + 0.6 * i4,
-            ..FibreDerivs::default()
-        }
-    }
-    fn uses(&self) -> FibreUse {
-        FibreUse::I4
-    }
-}
-
-/// ψ = (I4 − 1)² + 0.3 (I5 − 1)² − 0.2 I4 I5.
-struct Mixed;
-impl<const D: usize> FibreEnergy<D> for Mixed {
-    fn name(&self) -> &str {
-        "mixed"
-    }
-    fn fibre(&self, i4: f64, i5: f64) -> FibreDerivs {
-        FibreDerivs {
-            psi: (i4 - 1.0).powi(2) + 0.3 * (i5 - 1.0).powi(2) - 0.2 * i4 * i5,
-            d4: 2.0 * (i4 - 1.0) - 0.2 * i5,
-            d5: 0.6 * (i5 - 1.0) - 0.2 * i4,
-            d44: 2.0,
-            d45: -0.2,
-            d55: 0.6,
-        }
-    }
-    fn uses(&self) -> FibreUse {
-        FibreUse::Both
     }
 }
 

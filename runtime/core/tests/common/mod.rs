@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod energies;
+pub mod fibre_energies;
 
 pub use ecc_runtime::reference::cases::*;
 
