@@ -88,10 +88,37 @@ pub enum LoadError {
     #[error(
         "`{path}` declares `fiber {direction}`: its fibre part ψ(I4, I5) cannot be evaluated here \
          (only the isotropic part would be, a different energy); `ecc eval --fiber` evaluates it, \
-         and the library API is ecc_interp::fibre_from_module; scenes, `ecc check` and the Python \
-         package take .psi fibre energies in a later release"
+         and the library API is ecc_interp::fibre_from_module; a scene takes it as `[energy] psi` \
+         with a `[fibers]` section giving the directions; `ecc check` and the Python package's \
+         Energy do not take .psi fibre energies yet"
     )]
     FibrePart {
+        /// The file name.
+        path: String,
+        /// The declared direction's name.
+        direction: String,
+    },
+    /// A fibre energy was asked of a file without a fibre part
+    /// ([`crate::load_fibre_part`]).
+    #[error(
+        "`{path}` has no fibre part in {dim}D: a fibre energy needs a `fiber a` statement and a ψ \
+         of I4/I5 (an isotropic file belongs in `[energy]`)"
+    )]
+    NoFibrePart {
+        /// The file name.
+        path: String,
+        /// The requested dimension.
+        dim: usize,
+    },
+    /// The fibre part alone was asked of a file whose isotropic part Ψ_iso
+    /// is not 0 ([`crate::load_fibre_part`]): taking ψ would drop Ψ_iso.
+    #[error(
+        "`{path}` has an isotropic part besides its fibre part (`fiber {direction}`), and a fibre \
+         energy is ψ(I4, I5) alone: in a scene, give the file as `[energy] psi` (its isotropic part \
+         is then the body's energy and its fibre part the `[fibers]` term, `[fibers]` giving only \
+         the directions), or keep only the fibre terms in the file"
+    )]
+    IsoBesideFibre {
         /// The file name.
         path: String,
         /// The declared direction's name.

@@ -26,7 +26,9 @@
 //! An energy with `fiber a` has a second part ψ(I4, I5)
 //! ([`ecc_dsl::FibreIr`]): [`InterpFibre`] implements
 //! [`ecc_runtime::FibreEnergy`] for it ([`fibre_from_module`]), while
-//! [`InterpEnergy`] is the isotropic part Ψ_iso.
+//! [`InterpEnergy`] is the isotropic part Ψ_iso. [`load_parts`] loads both
+//! parts of a file and [`load_fibre_part`] ψ alone (refused when Ψ_iso ≠ 0):
+//! the scene providers of the CLI and the Python package use them.
 //!
 //! Conventions: Ψ = NaN (outside the domain, e.g. log of a negative
 //! determinant) is reported as +∞ and [`ecc_runtime::Spectral::infinite`];
@@ -39,6 +41,7 @@ mod energy;
 mod error;
 mod fibre;
 mod load;
+mod parts;
 pub mod tape;
 
 pub use energy::InterpEnergy;
@@ -48,4 +51,5 @@ pub use load::{
     compile_module, energy_from_module, energy_name, iso_part_from_module, load_psi, load_source,
     param_values,
 };
+pub use parts::{PsiParts, iso_part_is_zero, load_fibre_part, load_parts};
 pub use tape::Tape;
