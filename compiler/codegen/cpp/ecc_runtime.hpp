@@ -21,7 +21,11 @@
 //     (assemble.rs);
 //   * vec is column-major: vec(F)[c·d + r] = F_rc; element vectors are
 //     node-major [x0.x, x0.y, (x0.z), x1.x, …] and every element quantity is
-//     multiplied by the rest measure (element/eval.rs).
+//     multiplied by the rest measure (element/eval.rs);
+//   * fibre energies ψ(I4, I5) of a unit rest direction a (fibre.rs,
+//     fibre/*.rs): I4, I5, ∂ψ/∂F and the filtered Hessian, closed form
+//     (eqs. P3–P5) when ψ has no I4 derivative, else a d²×d² Jacobi
+//     eigensolve of the analytic Hessian (eq. P2 with F5); see "fibres" below.
 //
 // Standard library only (<cmath>, <cstdint>, <limits>), fixed-size arrays, no
 // allocation, no exceptions, no virtual calls. For CUDA/HIP, define
@@ -1085,6 +1089,573 @@ ECC_HOST_DEVICE inline ElementEval<12> eval_tet(const E& energy, const double (&
     double F[3][3];
     tet_f(x, dm_inv, F);
     return eval_element_f<3>(energy, F, dm_inv, volume, filter, want_hessian);
+}
+
+// ------------------------------------------------------------ fibres
+//
+// Fibre (anisotropic) energies ψ(I4, I5) of a unit rest-space direction a
+// (runtime/core/src/fibre*: the same formulas, the same order):
+//
+//   I4 = aᵀ S a = Σ σ_i b_i², b = Vᵀ a (signed polar F = R S, S = V Σ Vᵀ)  (F1)
+//   I5 = ‖F a‖²                                                          (F2)
+//   ∂ψ/∂F = ψ4 g4 + ψ5 g5                                                (P1)
+//   ∂²ψ/∂f² = ψ5 H5 + ψ4 H4 + [g4 g5] [[ψ44, ψ45], [ψ45, ψ55]] [g4 g5]ᵀ   (P2)
+//
+// with g5 = vec(2 F a aᵀ), H5 = 2 (a aᵀ ⊗ I) (eq. F3; Kim, de Goes & Iben
+// 2019 §4.1 eqs. 6–7), g4 from eq. F4 and H4 from the bilinear form F5
+// (fibre/frame.rs). A ψ without an I4 derivative at the point (every ψ(I5),
+// and anisotropic ARAP, whose sign(I4) is locally constant) has the closed
+// eigensystem (fibre/point.rs)
+//
+//   λ_along = 2ψ5 + 4ψ55 I5 on vec(n aᵀ), n = F a/‖F a‖,                 (P3)
+//   λ_across = 2ψ5 on vec(q aᵀ), q ⊥ n,                                  (P4)
+//   0 on vec(q cᵀ), c ⊥ a,                                               (P5)
+//
+// filtered eigenvalue by eigenvalue with no eigensolve. A ψ with I4 terms
+// is filtered by a Jacobi eigensolve of the d²×d² Hessian P2 (the Rust F5
+// path, `FibrePath::Numeric`; the Rust runtime's smaller reduced block of
+// fibre/reduced.rs is a speed-up that gives the same matrix to rounding).
+// An energy E provides `template <int D> FibreDerivs fibre(double i4,
+// double i5) const` and `static constexpr FibreUse fibre_uses(int d)`.
+
+/// ψ and its partials with respect to (I4, I5) at one point (fibre.rs
+/// `FibreDerivs`); ψ = +∞ outside the domain, the partials then 0.
+struct FibreDerivs {
+    double psi;
+    double d4;
+    double d5;
+    double d44;
+    double d45;
+    double d55;
+
+    /// Outside the domain: ψ = +∞, every partial 0.
+    ECC_HOST_DEVICE static FibreDerivs infinite() {
+        FibreDerivs d{};
+        d.psi = infinity();
+        return d;
+    }
+};
+
+/// Which fibre invariants ψ reads (fibre.rs `FibreUse`, decided by the CAS):
+/// I4 is computed (one signed SVD) only for I4 and Both.
+enum class FibreUse { None, I4, I5, Both };
+
+/// Which eigensystem produced a fibre Hessian (point.rs `FibrePath`).
+enum class FibrePath {
+    /// ψ not finite or F not finite: zero derivatives.
+    Degenerate,
+    /// Closed form P3–P5 (no I4 derivative at this point).
+    ClosedI5,
+    /// P2 with the analytic H4 (eq. F5), filtered by a d²×d² eigensolve.
+    Numeric,
+};
+
+/// ψ, I4, I5, vec(∂ψ/∂F) (column-major) and the filtered d²×d² ∂²ψ/∂f².
+template <int D>
+struct FibreEval {
+    double psi;
+    /// I4 (NaN when ψ does not read it: no SVD was taken).
+    double i4;
+    double i5;
+    double grad[D * D];
+    double hess[D * D][D * D];
+    FibrePath path;
+};
+
+namespace detail {
+
+/// x·c with 0·(±∞) = 0 (frame.rs `mul0`): a zero factor is exact.
+ECC_HOST_DEVICE inline double mul0(double c, double x) { return x == 0.0 ? 0.0 : c * x; }
+
+/// F a and I5 = ‖F a‖² (frame.rs `fa_i5`).
+template <int D>
+ECC_HOST_DEVICE inline double fa_i5(const double (&F)[D][D], const double (&a)[D], double fa[D]) {
+    double i5 = 0.0;
+    for (int r = 0; r < D; ++r) {
+        double s = 0.0;
+        for (int c = 0; c < D; ++c) s += F[r][c] * a[c];
+        fa[r] = s;
+    }
+    for (int r = 0; r < D; ++r) i5 += fa[r] * fa[r];
+    return i5;
+}
+
+/// Singular frame, b = Vᵀ a and I4 of one F (frame.rs `Frame`).
+template <int D>
+struct FibreFrame {
+    Svd<D> svd;
+    double b[D];
+    double i4;
+
+    /// No frame (ψ does not read I4: no SVD is taken); I4 = NaN.
+    ECC_HOST_DEVICE FibreFrame() : svd{}, b{}, i4(nan()) {}
+
+    ECC_HOST_DEVICE FibreFrame(const double (&F)[D][D], const double (&a)[D])
+        : svd(signed_svd<D>(F)), b{}, i4(0.0) {
+        for (int i = 0; i < D; ++i) {
+            double s = 0.0;
+            for (int c = 0; c < D; ++c) s += svd.v[c][i] * a[c];
+            b[i] = s;
+        }
+        for (int i = 0; i < D; ++i) i4 += svd.sigma[i] * b[i] * b[i];
+    }
+
+    /// ∂I4/∂M in the singular frame (eq. F4).
+    ECC_HOST_DEVICE void grad4_m(double g[D][D]) const {
+        const double* s = svd.sigma;
+        for (int r = 0; r < D; ++r)
+            for (int c = 0; c < D; ++c) {
+                if (r == c) {
+                    g[r][c] = b[r] * b[r];
+                } else {
+                    double num = 2.0 * b[r] * b[c] * s[r];
+                    g[r][c] = num == 0.0 ? 0.0 : num / (s[r] + s[c]);
+                }
+            }
+    }
+
+    /// vec(U X Vᵀ) (column-major) of a singular-frame matrix X.
+    ECC_HOST_DEVICE void to_f(const double x[D][D], double out[D * D]) const {
+        for (int r = 0; r < D; ++r)
+            for (int c = 0; c < D; ++c) {
+                double s = 0.0;
+                for (int i = 0; i < D; ++i)
+                    for (int j = 0; j < D; ++j) s += svd.u[r][i] * x[i][j] * svd.v[c][j];
+                out[c * D + r] = s;
+            }
+    }
+
+    /// G(M) of eq. F5: the first variation of S in the singular frame.
+    ECC_HOST_DEVICE void g(const double m[D][D], double out[D][D]) const {
+        const double* s = svd.sigma;
+        for (int p = 0; p < D; ++p)
+            for (int q = 0; q < D; ++q) {
+                if (p == q) {
+                    out[p][q] = m[p][p];
+                } else {
+                    double num = s[p] * m[p][q] + s[q] * m[q][p];
+                    out[p][q] = num == 0.0 ? 0.0 : num / (s[p] + s[q]);
+                }
+            }
+    }
+
+    /// B(M, N) of eq. F5 (off-diagonal terms, then the cancellation-free D_p).
+    ECC_HOST_DEVICE double bilinear(const double m[D][D], const double n[D][D]) const {
+        const double* s = svd.sigma;
+        double gm[D][D], gn[D][D];
+        g(m, gm);
+        g(n, gn);
+        double acc = 0.0;
+        for (int p = 0; p < D; ++p)
+            for (int q = 0; q < D; ++q) {
+                if (p == q || b[p] * b[q] == 0.0) continue;
+                double x = 0.0;
+                for (int k = 0; k < D; ++k)
+                    x += m[k][p] * n[k][q] + n[k][p] * m[k][q] - gm[p][k] * gn[k][q] -
+                         gn[p][k] * gm[k][q];
+                acc += b[p] * b[q] * mul0(1.0 / (s[p] + s[q]), x);
+            }
+        for (int p = 0; p < D; ++p) {
+            if (b[p] == 0.0) continue;
+            double dp = 0.0;
+            for (int k = 0; k < D; ++k) {
+                if (k == p) continue;
+                double m1 = m[p][k], m2 = m[k][p], n1 = n[p][k], n2 = n[k][p];
+                double sum = s[p] + s[k];
+                double t = 2.0 * m2 * n2 - m2 * n1 - n2 * m1 - mul0(s[p] / sum, (m2 - m1) * (n2 - n1));
+                dp += mul0(1.0 / sum, t);
+            }
+            acc += b[p] * b[p] * dp;
+        }
+        return acc;
+    }
+
+    /// ∂²I4/∂f² (eq. F5 rotated to F-space by V ⊗ U).
+    ECC_HOST_DEVICE void hess4(double h[D * D][D * D]) const {
+        constexpr int N = D * D;
+        double hm[N][N];
+        for (int i = 0; i < N; ++i)
+            for (int j = i; j < N; ++j) {
+                double ei[D][D] = {}, ej[D][D] = {};
+                ei[i % D][i / D] = 1.0;
+                ej[j % D][j / D] = 1.0;
+                hm[i][j] = hm[j][i] = bilinear(ei, ej);
+            }
+        double k[N][N];
+        for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j) k[i][j] = svd.v[i / D][j / D] * svd.u[i % D][j % D];
+        double t[N][N];
+        for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j) {
+                double s = 0.0;
+                for (int x = 0; x < N; ++x) s += k[i][x] * hm[x][j];
+                t[i][j] = s;
+            }
+        for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j) {
+                double s = 0.0;
+                for (int x = 0; x < N; ++x) s += t[i][x] * k[j][x];
+                h[i][j] = s;
+            }
+    }
+};
+
+/// Eigenvalues and eigenvectors (columns of `q`) of a finite symmetric N×N
+/// by cyclic Jacobi rotations (Golub & Van Loan §8.5, Rutishauser's stable
+/// rotation), to full working accuracy.
+template <int N>
+ECC_HOST_DEVICE inline void jacobi_eigen(double a[N][N], double vals[N], double q[N][N]) {
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) q[i][j] = i == j ? 1.0 : 0.0;
+    for (int sweep = 0; sweep < 100; ++sweep) {
+        double off = 0.0, diag = 0.0;
+        for (int i = 0; i < N; ++i) {
+            diag += a[i][i] * a[i][i];
+            for (int j = i + 1; j < N; ++j) off += a[i][j] * a[i][j];
+        }
+        if (off == 0.0 || off <= EPS * EPS * EPS * EPS * (diag + 2.0 * off)) break;
+        for (int p = 0; p < N; ++p)
+            for (int r = p + 1; r < N; ++r) {
+                double apr = a[p][r];
+                if (apr == 0.0) continue;
+                // t = tan of the rotation angle, the smaller root of t² + 2θt − 1 = 0.
+                double theta = (a[r][r] - a[p][p]) / (2.0 * apr);
+                double t = std::fabs(theta) > 1e150
+                               ? 0.5 / theta
+                               : std::copysign(1.0, theta) /
+                                     (std::fabs(theta) + std::sqrt(theta * theta + 1.0));
+                double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+                for (int k = 0; k < N; ++k) {
+                    double akp = a[k][p], akr = a[k][r];
+                    a[k][p] = c * akp - s * akr;
+                    a[k][r] = s * akp + c * akr;
+                }
+                for (int k = 0; k < N; ++k) {
+                    double apk = a[p][k], ark = a[r][k];
+                    a[p][k] = c * apk - s * ark;
+                    a[r][k] = s * apk + c * ark;
+                }
+                a[p][r] = a[r][p] = 0.0;
+                for (int k = 0; k < N; ++k) {
+                    double qkp = q[k][p], qkr = q[k][r];
+                    q[k][p] = c * qkp - s * qkr;
+                    q[k][r] = s * qkp + c * qkr;
+                }
+            }
+    }
+    for (int i = 0; i < N; ++i) vals[i] = a[i][i];
+}
+
+}  // namespace detail
+
+/// Filter a symmetric N×N matrix eigenvalue by eigenvalue (reference/mod.rs
+/// `project_psd_numeric`): symmetrised; returned as is for Filter::none();
+/// a non-finite matrix projects to 0.
+template <int N>
+ECC_HOST_DEVICE inline void project_psd(const double h[N][N], Filter filter, double out[N][N]) {
+    double sym[N][N];
+    bool finite = true;
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) {
+            sym[i][j] = 0.5 * (h[i][j] + h[j][i]);
+            finite = finite && std::isfinite(sym[i][j]);
+        }
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) out[i][j] = filter.is_raw() ? sym[i][j] : 0.0;
+    if (filter.is_raw() || !finite) return;
+    double vals[N], q[N][N];
+    detail::jacobi_eigen<N>(sym, vals, q);
+    for (int k = 0; k < N; ++k) vals[k] = filter.apply(vals[k]);
+    for (int i = 0; i < N; ++i)
+        for (int j = i; j < N; ++j) {
+            double acc = 0.0;
+            for (int k = 0; k < N; ++k) acc += q[i][k] * vals[k] * q[j][k];
+            out[i][j] = out[j][i] = acc;
+        }
+}
+
+/// I4 = aᵀ S a with the signed SVD's S = V Σ Vᵀ (eq. F1); `a` a unit vector.
+template <int D>
+ECC_HOST_DEVICE inline double fibre_invariant4(const double (&F)[D][D], const double (&a)[D]) {
+    return detail::FibreFrame<D>(F, a).i4;
+}
+
+/// I5 = ‖F a‖² (eq. F2).
+template <int D>
+ECC_HOST_DEVICE inline double fibre_invariant5(const double (&F)[D][D], const double (&a)[D]) {
+    double fa[D];
+    return detail::fa_i5<D>(F, a, fa);
+}
+
+/// a/‖a‖ into `out`; false (out untouched) for a zero or non-finite vector
+/// (fibre/dim.rs `unit_fibre`).
+template <int D>
+ECC_HOST_DEVICE inline bool unit_fibre(const double (&dir)[D], double (&out)[D]) {
+    double n2 = 0.0;
+    for (int i = 0; i < D; ++i) {
+        if (!std::isfinite(dir[i])) return false;
+        n2 += dir[i] * dir[i];
+    }
+    double n = std::sqrt(n2);
+    if (!(std::isfinite(n) && n > 0.0)) return false;
+    for (int i = 0; i < D; ++i) out[i] = dir[i] / n;
+    return true;
+}
+
+namespace detail {
+
+/// Unit n = F a/‖F a‖ (e₀ when F a = 0), scaled first (point.rs `unit`).
+template <int D>
+ECC_HOST_DEVICE inline void unit_fa(const double fa[D], double n[D]) {
+    double m = 0.0;
+    for (int i = 0; i < D; ++i) m = ecc::fmax(m, std::fabs(fa[i]));
+    if (m == 0.0) {
+        for (int i = 0; i < D; ++i) n[i] = i == 0 ? 1.0 : 0.0;
+        return;
+    }
+    double y[D], s = 0.0;
+    for (int i = 0; i < D; ++i) {
+        y[i] = fa[i] / m;
+        s += y[i] * y[i];
+    }
+    s = std::sqrt(s);
+    for (int i = 0; i < D; ++i) n[i] = y[i] / s;
+}
+
+/// The closed-form Hessian of eqs. P3–P5 from the filtered eigenvalues
+/// f = [along, across, null]: f0 (I − P) + f_across (P − e eᵀ) + f_along e eᵀ,
+/// P = a aᵀ ⊗ I, e = a ⊗ n (point.rs `closed_hessian`).
+template <int D>
+ECC_HOST_DEVICE inline void closed_hessian(const double f[3], const double (&a)[D], const double n[D],
+                                           double h[D * D][D * D]) {
+    constexpr int N = D * D;
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) {
+            int ci = i / D, ri = i % D, cj = j / D, rj = j % D;
+            double p = ri == rj ? a[ci] * a[cj] : 0.0;
+            double e = a[ci] * n[ri] * a[cj] * n[rj];
+            double id = i == j ? 1.0 : 0.0;
+            h[i][j] = mul0(f[2], id - p) + mul0(f[1], p - e) + mul0(f[0], e);
+        }
+}
+
+/// The raw Hessian P2 (point.rs `raw_hessian`); NaN entries become +∞.
+template <int D>
+ECC_HOST_DEVICE inline void fibre_raw_hessian(const FibreFrame<D>& fr, const double (&a)[D],
+                                              const FibreDerivs& d, const double g4[D * D],
+                                              const double g5[D * D], double h[D * D][D * D]) {
+    constexpr int N = D * D;
+    double h4[N][N] = {};
+    if (d.d4 != 0.0) fr.hess4(h4);
+    for (int i = 0; i < N; ++i)
+        for (int j = 0; j < N; ++j) {
+            double h5 = i % D == j % D ? 2.0 * a[i / D] * a[j / D] : 0.0;
+            double v = mul0(d.d5, h5) + mul0(d.d4, h4[i][j]) + mul0(d.d44, g4[i] * g4[j]) +
+                       mul0(d.d45, g4[i] * g5[j] + g5[i] * g4[j]) + mul0(d.d55, g5[i] * g5[j]);
+            h[i][j] = std::isnan(v) ? infinity() : v;
+        }
+}
+
+/// The fibre point kernel (point.rs `point_kernel`): ψ, I4, I5, gradient and,
+/// if asked, the filtered Hessian, with the closed filtered eigenvalues and n
+/// in `closed`/`n` when the path is ClosedI5 (then `hess` is not filled).
+template <int D, class E>
+ECC_HOST_DEVICE inline FibreEval<D> fibre_kernel(const E& energy, const double (&F)[D][D],
+                                                 const double (&a)[D], Filter filter,
+                                                 bool want_hessian, double closed[3], double n[D]) {
+    constexpr int N = D * D;
+    FibreEval<D> out{};
+    out.path = FibrePath::Degenerate;
+    out.i4 = nan();
+    for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j)
+            if (!std::isfinite(F[i][j])) {
+                out.psi = nan();
+                out.i5 = nan();
+                return out;
+            }
+    constexpr FibreUse uses = E::fibre_uses(D);
+    constexpr bool reads_i4 = uses == FibreUse::I4 || uses == FibreUse::Both;
+    double fa[D];
+    out.i5 = fa_i5<D>(F, a, fa);
+    FibreFrame<D> fr;
+    if (reads_i4) {
+        fr = FibreFrame<D>(F, a);
+        out.i4 = fr.i4;
+    }
+    const FibreDerivs d = energy.template fibre<D>(out.i4, out.i5);
+    out.psi = d.psi;
+    if (!std::isfinite(d.psi)) return out;
+    double g5[N];
+    for (int k = 0; k < N; ++k) g5[k] = 2.0 * fa[k % D] * a[k / D];
+    bool i4_terms = reads_i4 && (d.d4 != 0.0 || d.d44 != 0.0 || d.d45 != 0.0);
+    if (!i4_terms) {
+        out.path = FibrePath::ClosedI5;
+        for (int k = 0; k < N; ++k) out.grad[k] = mul0(d.d5, g5[k]);
+        if (want_hessian) {
+            const double lam[3] = {2.0 * d.d5 + mul0(4.0 * d.d55, out.i5), 2.0 * d.d5, 0.0};
+            for (int k = 0; k < 3; ++k) closed[k] = filter.apply(lam[k]);
+            unit_fa<D>(fa, n);
+        }
+        return out;
+    }
+    out.path = FibrePath::Numeric;
+    double gm[D][D], g4[N];
+    fr.grad4_m(gm);
+    fr.to_f(gm, g4);
+    for (int k = 0; k < N; ++k) out.grad[k] = mul0(d.d4, g4[k]) + mul0(d.d5, g5[k]);
+    if (want_hessian) {
+        double raw[N][N];
+        fibre_raw_hessian<D>(fr, a, d, g4, g5, raw);
+        project_psd<N>(raw, filter, out.hess);
+    }
+    return out;
+}
+
+/// x-space vectors w_n of an element (fibre/element.rs eq. E1): row n − 1 of
+/// Dm⁻¹ for n ≥ 1 and w_0 = −Σ w_n.
+template <int D>
+ECC_HOST_DEVICE inline void element_w(const double (&dm_inv)[D][D], double w[D + 1][D]) {
+    for (int c = 0; c < D; ++c) {
+        double s = 0.0;
+        for (int m = 0; m < D; ++m) s += dm_inv[m][c];
+        w[0][c] = -s;
+        for (int n = 1; n <= D; ++n) w[n][c] = dm_inv[n - 1][c];
+    }
+}
+
+/// The element Hessian of the closed form without the d²×d² matrix
+/// (fibre/element.rs eq. E2), β_n = a · w_n, times the measure.
+template <int D>
+ECC_HOST_DEVICE inline void closed_element(const double w[D + 1][D], const double (&a)[D],
+                                           const double f[3], const double n[D], double m,
+                                           double h[D * (D + 1)][D * (D + 1)]) {
+    constexpr int K = D + 1, NE = D * K;
+    double beta[K];
+    for (int k = 0; k < K; ++k) {
+        beta[k] = 0.0;
+        for (int c = 0; c < D; ++c) beta[k] += a[c] * w[k][c];
+    }
+    for (int i = 0; i < NE; ++i)
+        for (int j = 0; j < NE; ++j) {
+            int p = i / D, r = i % D, q = j / D, s = j % D;
+            double bb = beta[p] * beta[q];
+            double iso;
+            if (r == s) {
+                double ww = 0.0;
+                for (int c = 0; c < D; ++c) ww += w[p][c] * w[q][c];
+                iso = mul0(f[2], ww - bb) + mul0(f[1], bb * (1.0 - n[r] * n[r]));
+            } else {
+                iso = mul0(f[1], -bb * n[r] * n[s]);
+            }
+            h[i][j] = m * (iso + mul0(f[0], bb * n[r] * n[s]));
+        }
+}
+
+}  // namespace detail
+
+/// ψ(F) of a fibre energy for the unit fibre `a` (fibre/element.rs
+/// `psi_kernel`: the SVD only when ψ reads I4); NaN for a non-finite F.
+template <int D, class E>
+ECC_HOST_DEVICE inline double fibre_psi_f(const E& energy, const double (&F)[D][D],
+                                          const double (&a)[D]) {
+    for (int i = 0; i < D; ++i)
+        for (int j = 0; j < D; ++j)
+            if (!std::isfinite(F[i][j])) return nan();
+    constexpr FibreUse uses = E::fibre_uses(D);
+    double fa[D];
+    double i5 = detail::fa_i5<D>(F, a, fa);
+    double i4 = (uses == FibreUse::I4 || uses == FibreUse::Both) ? fibre_invariant4<D>(F, a) : nan();
+    return energy.template fibre<D>(i4, i5).psi;
+}
+
+/// ψ, I4, I5, vec(∂ψ/∂F) and the `filter`ed d²×d² ∂²ψ/∂f² of a fibre energy
+/// at F for the unit rest fibre `a` (fibre/dim.rs `fibre_f`). Outside ψ's
+/// domain ψ = +∞ with zero derivatives; a non-finite F gives ψ = NaN and
+/// zeros (path Degenerate).
+template <int D, class E>
+ECC_HOST_DEVICE inline FibreEval<D> fibre_eval_f(const E& energy, const double (&F)[D][D],
+                                                 const double (&a)[D], Filter filter,
+                                                 bool want_hessian = true) {
+    double closed[3] = {0.0, 0.0, 0.0}, n[D] = {};
+    FibreEval<D> out = detail::fibre_kernel<D>(energy, F, a, filter, want_hessian, closed, n);
+    if (want_hessian && out.path == FibrePath::ClosedI5)
+        detail::closed_hessian<D>(closed, a, n, out.hess);
+    return out;
+}
+
+/// Energy, node-major gradient and filtered Hessian of a fibre energy on a
+/// linear element (fibre/dim.rs `fibre_element_eval`), all × the rest
+/// measure: ∇ψ_e = |q| Wᵀ vec(∂ψ/∂F), ∇²ψ_e = |q| Wᵀ H W (eq. E1), the
+/// closed form through eq. E2.
+template <int D, class E>
+ECC_HOST_DEVICE inline ElementEval<D*(D + 1)> fibre_eval_element_f(
+    const E& energy, const double (&F)[D][D], const double (&dm_inv)[D][D], double measure,
+    const double (&a)[D], Filter filter, bool want_hessian = true) {
+    constexpr int K = D + 1, NE = D * K;
+    double closed[3] = {0.0, 0.0, 0.0}, n[D] = {};
+    FibreEval<D> p = detail::fibre_kernel<D>(energy, F, a, filter, want_hessian, closed, n);
+    ElementEval<NE> out{};
+    out.psi = measure * p.psi;
+    double w[K][D];
+    detail::element_w<D>(dm_inv, w);
+    // (Wᵀ g)[(k, r)] = Σ_c w_k[c] g[(c, r)].
+    for (int k = 0; k < K; ++k)
+        for (int r = 0; r < D; ++r) {
+            double s = 0.0;
+            for (int c = 0; c < D; ++c) s += w[k][c] * p.grad[c * D + r];
+            out.grad[k * D + r] = s * measure;
+        }
+    if (!want_hessian || p.path == FibrePath::Degenerate) return out;
+    if (p.path == FibrePath::ClosedI5) {
+        detail::closed_element<D>(w, a, closed, n, measure, out.hess);
+        return out;
+    }
+    double hw[D * D][NE];  // H W
+    for (int i = 0; i < D * D; ++i)
+        for (int j = 0; j < NE; ++j) {
+            int k = j / D, r = j % D;
+            double s = 0.0;
+            for (int c = 0; c < D; ++c) s += p.hess[i][c * D + r] * w[k][c];
+            hw[i][j] = s;
+        }
+    double h[NE][NE];
+    for (int i = 0; i < NE; ++i)
+        for (int j = 0; j < NE; ++j) {
+            int k = i / D, r = i % D;
+            double s = 0.0;
+            for (int c = 0; c < D; ++c) s += w[k][c] * hw[c * D + r][j];
+            h[i][j] = s * measure;
+        }
+    // ∞ − ∞ (a raw Hessian at a pole σ_i + σ_j = 0) is reported as +∞, as at F.
+    for (int i = 0; i < NE; ++i)
+        for (int j = 0; j < NE; ++j) {
+            double v = 0.5 * (h[i][j] + h[j][i]);
+            out.hess[i][j] = std::isnan(v) ? infinity() : v;
+        }
+    return out;
+}
+
+/// The fibre part of a linear triangle (6×6), × its rest area.
+template <class E>
+ECC_HOST_DEVICE inline ElementEval<6> fibre_eval_tri(const E& energy, const double (&x)[3][2],
+                                                     const double (&dm_inv)[2][2], double area,
+                                                     const double (&a)[2], Filter filter,
+                                                     bool want_hessian = true) {
+    double F[2][2];
+    tri_f(x, dm_inv, F);
+    return fibre_eval_element_f<2>(energy, F, dm_inv, area, a, filter, want_hessian);
+}
+
+/// The fibre part of a linear tetrahedron (12×12), × its rest volume.
+template <class E>
+ECC_HOST_DEVICE inline ElementEval<12> fibre_eval_tet(const E& energy, const double (&x)[4][3],
+                                                      const double (&dm_inv)[3][3], double volume,
+                                                      const double (&a)[3], Filter filter,
+                                                      bool want_hessian = true) {
+    double F[3][3];
+    tet_f(x, dm_inv, F);
+    return fibre_eval_element_f<3>(energy, F, dm_inv, volume, a, filter, want_hessian);
 }
 
 }  // namespace ecc

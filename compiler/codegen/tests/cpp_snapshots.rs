@@ -32,15 +32,7 @@ fn generated_headers() {
             .file_stem()
             .and_then(|s| s.to_str())
             .expect("a file stem");
-        // Fibre energies (`fibre_*.psi`) are a clear error, not a header.
-        let text = if stem.starts_with("fibre_") {
-            match header_or_error(stem, CppRuntime::Include("ecc_runtime.hpp".into())) {
-                Err(e) => format!("error: {e}"),
-                Ok(_) => panic!("{stem}: a fibre energy must be refused by --emit cpp"),
-            }
-        } else {
-            header(stem, CppRuntime::Include("ecc_runtime.hpp".into()))
-        };
+        let text = header(stem, CppRuntime::Include("ecc_runtime.hpp".into()));
         insta::assert_snapshot!("cpp", text);
     });
 }
@@ -88,4 +80,48 @@ fn bad_type_names_are_refused() {
         );
     }
     assert!(generate_cpp(&m, &CppOptions::named("MyArap")).is_ok());
+}
+
+#[test]
+fn fibre_energies_get_the_fibre_members_and_isotropic_ones_do_not() {
+    let inc = || CppRuntime::Include("ecc_runtime.hpp".into());
+    for stem in ["fibre_arap", "fibre_stvk", "fibre_fung"] {
+        let text = header(stem, inc());
+        for member in [
+            "static constexpr bool has_fibre(int d)",
+            "fibre_uses(int d)",
+            "::ecc::FibreDerivs fibre(double i4, double i5) const",
+            "::ecc::FibreEval<3> fibre_eval(",
+            "::ecc::FibreEval<2> fibre_eval(",
+            "fibre_eval_tet(",
+            "fibre_eval_tri(",
+            "fibre_psi_f(",
+            "closed-form eigensystem",
+        ] {
+            assert!(text.contains(member), "{stem}: no `{member}`:\n{text}");
+        }
+    }
+    // ARAP reads sign(I4) (so I4 is computed: FibreUse::Both) but has no I4
+    // derivative: the closed form still applies.
+    let arap = header("fibre_arap", inc());
+    assert!(arap.contains("const double sign_i4 = i4 > 0.0 ? 1.0"));
+    assert!(arap.contains("d == 3 ? ::ecc::FibreUse::Both"), "{arap}");
+    let stvk = header("fibre_stvk", inc());
+    assert!(
+        stvk.contains("(void)i4;"),
+        "ψ(I5) does not read I4:\n{stvk}"
+    );
+    assert!(stvk.contains("d == 3 ? ::ecc::FibreUse::I5"), "{stvk}");
+    let snh = header("snh", inc());
+    assert!(!snh.contains("fibre"), "no fibre members without `fiber`");
+}
+
+#[test]
+fn a_fibre_energy_with_i4_terms_is_emitted_with_the_numeric_block() {
+    let src = "fiber a\nparam k = 1.5\npsi = k*(I4 - 1)^2 + (I5 - 1)^2\n";
+    let m = ecc_dsl::compile(src, "x").expect("compiles");
+    let text = generate_cpp(&m, &CppOptions::named("Mixed")).expect("emitted");
+    assert!(text.contains("::ecc::FibreUse::Both"));
+    assert!(text.contains("fibre_eval filters the Hessian by a d²×d² eigensolve"));
+    assert!(text.contains(CPP_RUNTIME), "runtime inlined");
 }

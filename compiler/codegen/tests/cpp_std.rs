@@ -46,8 +46,8 @@ fn library() -> Vec<(ecc_dsl::Module, String)> {
                 .unwrap_or_else(|d| panic!("{}", d.render(&path, &src)));
             (m, type_name_from_stem(stem))
         })
-        // Fibre energies are refused by --emit cpp (`CodegenError::FibreUnsupported`,
-        // snapshotted by cpp_snapshots.rs).
+        // Fibre energies (whose Rust counterparts come from `fibre_by_name`, not
+        // `by_name`) are tested by cpp_fibre.rs.
         .filter(|(m, _)| m.dims.iter().all(|d| d.fibre.is_none()))
         .collect()
 }

@@ -17,7 +17,7 @@ use crate::summary::{dim_facts, pair_label, params_line};
 /// Locals of the generated functions (and namespaces they name): no
 /// binding or parameter takes them.
 const RESERVED: &[&str] = &[
-    "s1", "s2", "s3", "i1", "i2", "i3", "sigma", "out", "std", "ecc",
+    "s1", "s2", "s3", "i1", "i2", "i3", "i4", "i5", "sign_i4", "sigma", "out", "std", "ecc",
 ];
 
 /// Members of the generated struct and parameters of its entry points: no
@@ -40,6 +40,15 @@ const MEMBERS: &[&str] = &[
     "volume",
     "filter",
     "want_hessian",
+    "has_fibre",
+    "fibre_uses",
+    "fibre",
+    "fibre_psi_f",
+    "fibre_eval",
+    "fibre_eval_tri",
+    "fibre_eval_tet",
+    "a",
+    "D",
 ];
 
 /// C++ keywords and alternative tokens (C++17, plus C++20 ones for safety).
@@ -204,20 +213,20 @@ fn string_lit(s: &str) -> String {
 }
 
 /// Everything needed to print one module.
-struct Ctx<'a> {
+pub(super) struct Ctx<'a> {
     module: &'a Module,
     fields: Vec<String>,
 }
 
 impl Ctx<'_> {
-    fn leaf_name(&self, s: Sym) -> String {
+    pub(super) fn leaf_name(&self, s: Sym) -> String {
         match s {
             Sym::Sigma(k) => format!("s{}", k + 1),
             Sym::I1 => "i1".into(),
             Sym::I2 => "i2".into(),
             Sym::I3 => "i3".into(),
             Sym::Param(k) => self.fields[k as usize].clone(),
-            // Fibre parts are refused before any C++ is printed.
+            // The fibre leaves (`fibre` function parameters and local).
             Sym::I4 => "i4".into(),
             Sym::I5 => "i5".into(),
             Sym::SignI4 => "sign_i4".into(),
@@ -225,7 +234,7 @@ impl Ctx<'_> {
     }
 
     /// Names bindings must avoid: ours, the parameters', C++ keywords.
-    fn taken(&self) -> Vec<&str> {
+    pub(super) fn taken(&self) -> Vec<&str> {
         let mut t: Vec<&str> = RESERVED.iter().chain(CPP_KEYWORDS).copied().collect();
         t.extend(self.fields.iter().map(String::as_str));
         t
@@ -285,6 +294,17 @@ fn file_comment(module: &Module, ty: &str) -> String {
             let _ = writeln!(h, "//   - {f}");
         }
     }
+    for d in &module.dims {
+        if let Some(f) = &d.fibre {
+            let _ = writeln!(
+                h,
+                "// {}D fibre part (direction `{}`): {}.",
+                d.dim,
+                f.direction,
+                fibre_fact(f)
+            );
+        }
+    }
     for (d, why) in &module.skipped {
         let _ = writeln!(h, "// {d}D not generated: {why}");
     }
@@ -293,6 +313,15 @@ fn file_comment(module: &Module, ty: &str) -> String {
          // `#define ECC_HOST_DEVICE __host__ __device__` before including this file.\n\n",
     );
     h
+}
+
+/// What the file comment says of a fibre part: which eigensystem applies.
+fn fibre_fact(f: &ecc_dsl::FibreIr) -> &'static str {
+    if f.closed_form {
+        "ψ has no I4 derivative, closed-form eigensystem (fibre_eval: no eigensolve)"
+    } else {
+        "ψ has I4 terms, fibre_eval filters the Hessian by a d²×d² eigensolve"
+    }
 }
 
 fn struct_text(ctx: &Ctx, ty: &str, name: &str) -> String {
@@ -349,6 +378,7 @@ fn struct_text(ctx: &Ctx, ty: &str, name: &str) -> String {
         s.push('\n');
         s.push_str(&entry_points(d.dim));
     }
+    s.push_str(&super::fibre::members(ctx, &m.dims));
     s.push_str("};\n");
     s
 }

@@ -17,16 +17,23 @@
 //!   near σi = ±σj as the Rust code (`ecc::LIMIT_TOL`);
 //! * `eval(F, filter)` → `ecc::PointEval<D>`: Ψ, vec(∂Ψ/∂F) and the filtered
 //!   d²×d² Hessian; `eval_tri(x, Dm⁻¹, area, filter)` (2D, 6×6) or
-//!   `eval_tet(x, Dm⁻¹, volume, filter)` (3D, 12×12): the element versions.
+//!   `eval_tet(x, Dm⁻¹, volume, filter)` (3D, 12×12): the element versions;
+//! * for an energy with `fiber a`, the fibre part ψ(I4, I5) ([`fibre`]):
+//!   `fibre<D>(i4, i5)` → `ecc::FibreDerivs`, `fibre_eval(F, a, filter)` →
+//!   `ecc::FibreEval<D>` (ψ, I4, I5, vec(∂ψ/∂F), filtered d²×d² Hessian),
+//!   `fibre_eval_tri` / `fibre_eval_tet` and `fibre_psi_f`. As in Rust the
+//!   isotropic part (`eval`) and the fibre part are separate terms, each
+//!   projected on its own; a solver adds them.
 //!
 //! The runtime they call ([`CPP_RUNTIME`], `compiler/codegen/cpp/ecc_runtime.hpp`:
-//! signed SVD, modes, filters, chain rule) is written once, not generated.
+//! signed SVD, modes, filters, chain rule, the fibre eigensystems) is written once, not generated.
 //! By default it is inlined into the header behind its include guard, so the
 //! header is self-contained and several headers can be included together;
 //! [`CppRuntime::Include`] emits an `#include` instead.
 
 mod energy;
 mod expr;
+mod fibre;
 
 use crate::error::CodegenError;
 
@@ -70,24 +77,5 @@ impl CppOptions {
 
 /// The C++17 header of `module` (see the module docs). Pure: no I/O.
 pub fn generate_cpp(module: &ecc_dsl::Module, opts: &CppOptions) -> Result<String, CodegenError> {
-    if module.dims.iter().any(|d| d.fibre.is_some()) {
-        return Err(CodegenError::FibreUnsupported {
-            backend: "--emit cpp",
-            line: fiber_line(&module.source),
-        });
-    }
     energy::header(module, opts)
-}
-
-/// The 1-based line of the first `fiber`/`fibre` statement of `source` (1
-/// if it cannot be found, e.g. after `;` on one line).
-fn fiber_line(source: &str) -> usize {
-    source
-        .lines()
-        .position(|l| {
-            let t = l.trim_start();
-            (t.starts_with("fiber") || t.starts_with("fibre"))
-                && t[5..].starts_with(|c: char| c.is_whitespace())
-        })
-        .map_or(1, |k| k + 1)
 }
