@@ -1,16 +1,22 @@
 //! `simulate(scene.toml, …)`: a scene file run by ecc-scene (as `ecc sim`),
 //! its summary returned as a dict. Energies by name are the standard `.psi`
 //! files evaluated by the interpreter (the numbers of `ecc eval`), `.psi`
-//! paths are loaded with `ecc_interp::load_psi`.
+//! paths are loaded with `ecc_interp::load_parts` (the fibre part of a file
+//! with `fiber a` goes on the `[fibers]` directions). Fibre energies
+//! (`[fibers] energy`) by name are the generated library's
+//! (`ecc_energies::fibre_by_name`, as `ecc sim`), `.psi` paths their fibre
+//! part (`ecc_interp::load_fibre_part`).
 
 use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 use ecc_fem::IterationRecord;
 use ecc_interp::LoadError;
-use ecc_runtime::{Dim, Energy, Space};
+use ecc_runtime::{Dim, Energy, FibreEnergy, Space};
+use ecc_scene::energy::apply_fibre_params;
 use ecc_scene::{
-    EnergyError, EnergyRequest, EnergySource, Observer, RunOptions, SceneFile, run_scene,
+    BodyEnergy, EnergyError, EnergyRequest, EnergySource, Observer, RunOptions, SceneFile,
+    run_scene,
 };
 use pyo3::prelude::*;
 
@@ -32,6 +38,45 @@ fn load_error(e: LoadError) -> EnergyError {
     }
 }
 
+/// The body's energy: both parts of a `.psi` file, or a built-in by name.
+fn body<const D: usize>(req: &EnergyRequest<'_>) -> Result<BodyEnergy<D>, EnergyError>
+where
+    Space<D>: Dim<D>,
+{
+    let Some(p) = req.psi else {
+        return provide::<D>(req).map(BodyEnergy::isotropic);
+    };
+    let parts = ecc_interp::load_parts::<D>(p, req.params).map_err(load_error)?;
+    Ok(BodyEnergy {
+        energy: Box::new(parts.iso),
+        fibre: parts.fibre.map(|f| Box::new(f) as Box<dyn FibreEnergy<D>>),
+    })
+}
+
+/// A fibre energy: the fibre part of a `.psi` file, or the library's by name.
+fn fibre<const D: usize>(req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<D>>, EnergyError> {
+    if let Some(p) = req.psi {
+        let f = ecc_interp::load_fibre_part::<D>(p, req.params).map_err(load_error)?;
+        return Ok(Box::new(f));
+    }
+    let name = req.name.unwrap_or_default();
+    let mut e = ecc_energies::fibre_by_name::<D>(name).ok_or_else(|| match ecc_energies::entry(
+        name,
+    ) {
+        Some(entry) if !entry.fibre => EnergyError::File(format!(
+            "`{}` is an isotropic energy, not a fibre energy ψ(I4, I5) (it belongs in [energy])",
+            entry.name
+        )),
+        _ => EnergyError::UnknownName {
+            name: name.to_string(),
+            known: PyEnergies.fibre_names(),
+        },
+    })?;
+    apply_fibre_params(e.as_mut(), req.params)?;
+    Ok(e)
+}
+
+/// A built-in isotropic energy by name (a `.psi` path through [`body`]).
 fn provide<const D: usize>(req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<D>>, EnergyError>
 where
     Space<D>: Dim<D>,
@@ -72,6 +117,29 @@ impl EnergySource for PyEnergies {
 
     fn names(&self) -> Vec<String> {
         builtin::names().iter().map(|s| s.to_string()).collect()
+    }
+
+    fn body2(&self, req: &EnergyRequest<'_>) -> Result<BodyEnergy<2>, EnergyError> {
+        body::<2>(req)
+    }
+
+    fn body3(&self, req: &EnergyRequest<'_>) -> Result<BodyEnergy<3>, EnergyError> {
+        body::<3>(req)
+    }
+
+    fn fibre2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<2>>, EnergyError> {
+        fibre::<2>(req)
+    }
+
+    fn fibre3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<3>>, EnergyError> {
+        fibre::<3>(req)
+    }
+
+    fn fibre_names(&self) -> Vec<String> {
+        ecc_energies::fibre_names()
+            .iter()
+            .map(|s| s.to_string())
+            .collect()
     }
 }
 

@@ -2,7 +2,11 @@
 //!
 //! Energies come from the built-in generated library (`energy.name`) or
 //! from a `.psi` file evaluated by the interpreter without rebuilding
-//! (`energy.psi`). Without a scene file, runs the built-in demo (`ecc demo`).
+//! (`energy.psi`); fibre energies likewise (`fibers.energy`: a name of
+//! `ecc_energies::fibre_by_name`, or the fibre part of a `.psi`; the fibre
+//! part of `energy.psi` goes on the `[fibers]` directions, see
+//! `ecc_scene::terms::fibre`). Without a scene file, runs the built-in demo
+//! (`ecc demo`).
 //! Writes per-frame OBJ/VTK, `result.png`, `convergence.png` and
 //! `summary.json` into the output folder; a progress bar shows frames and
 //! Newton iterations on stderr (hidden with `--quiet` or when stderr is not
@@ -11,11 +15,12 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use ecc_interp::{LoadError, load_psi};
-use ecc_runtime::Energy;
-use ecc_scene::energy::apply_params;
+use ecc_interp::{LoadError, load_fibre_part, load_parts, load_psi};
+use ecc_runtime::{Energy, FibreEnergy};
+use ecc_scene::energy::{apply_fibre_params, apply_params};
 use ecc_scene::{
-    EnergyError, EnergyRequest, EnergySource, RunOptions, RunStatus, SceneFile, run_scene,
+    BodyEnergy, EnergyError, EnergyRequest, EnergySource, RunOptions, RunStatus, SceneFile,
+    run_scene,
 };
 
 use crate::error::CliError;
@@ -90,6 +95,53 @@ impl CliEnergies {
         apply_params(e.as_mut(), req.params)?;
         Ok(e)
     }
+
+    /// The body's energy: a `.psi` file's two parts, or a library energy.
+    fn body<const D: usize>(req: &EnergyRequest<'_>) -> Result<BodyEnergy<D>, EnergyError> {
+        let Some(p) = req.psi else {
+            return Self::by_name::<D>(req).map(BodyEnergy::isotropic);
+        };
+        let parts = load_parts::<D>(p, req.params).map_err(load_error)?;
+        Ok(BodyEnergy {
+            energy: Box::new(parts.iso),
+            fibre: parts.fibre.map(|f| Box::new(f) as Box<dyn FibreEnergy<D>>),
+        })
+    }
+
+    /// A fibre energy: the fibre part of a `.psi` file, or a library one by name.
+    fn fibre<const D: usize>(
+        req: &EnergyRequest<'_>,
+    ) -> Result<Box<dyn FibreEnergy<D>>, EnergyError> {
+        if let Some(p) = req.psi {
+            let f = load_fibre_part::<D>(p, req.params).map_err(load_error)?;
+            return Ok(Box::new(f));
+        }
+        let name = req.name.unwrap_or_default();
+        let mut e =
+            ecc_energies::fibre_by_name::<D>(name).ok_or_else(|| {
+                match ecc_energies::entry(name) {
+                    Some(entry) if !entry.fibre => EnergyError::File(format!(
+                        "`{}` is an isotropic energy, not a fibre energy ψ(I4, I5) (it belongs in \
+                     [energy])",
+                        entry.name
+                    )),
+                    _ => EnergyError::UnknownName {
+                        name: name.to_string(),
+                        known: fibre_names(),
+                    },
+                }
+            })?;
+        apply_fibre_params(e.as_mut(), req.params)?;
+        Ok(e)
+    }
+}
+
+/// The library's fibre energy names.
+fn fibre_names() -> Vec<String> {
+    ecc_energies::fibre_names()
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
 }
 
 impl EnergySource for CliEnergies {
@@ -112,6 +164,26 @@ impl EnergySource for CliEnergies {
             .iter()
             .map(|s| s.to_string())
             .collect()
+    }
+
+    fn body2(&self, req: &EnergyRequest<'_>) -> Result<BodyEnergy<2>, EnergyError> {
+        Self::body::<2>(req)
+    }
+
+    fn body3(&self, req: &EnergyRequest<'_>) -> Result<BodyEnergy<3>, EnergyError> {
+        Self::body::<3>(req)
+    }
+
+    fn fibre2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<2>>, EnergyError> {
+        Self::fibre::<2>(req)
+    }
+
+    fn fibre3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<3>>, EnergyError> {
+        Self::fibre::<3>(req)
+    }
+
+    fn fibre_names(&self) -> Vec<String> {
+        fibre_names()
     }
 }
 

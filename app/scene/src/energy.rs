@@ -9,18 +9,41 @@
 
 use std::path::Path;
 
-use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
-use ecc_runtime::{Energy, ParamError};
+use ecc_runtime::energies::{Arap, FIBRE_NAMES, StableNeoHookean, SymmetricDirichlet};
+use ecc_runtime::{Energy, FibreEnergy, ParamError};
 
-/// What a scene asks for.
+/// What a scene asks for: the body's energy (`[energy]`: `name`, `psi`,
+/// `params`) or the fibre energy (`[fibers]`: `energy` as a name or a
+/// `.psi` path, `params`).
 #[derive(Clone, Copy, Debug)]
 pub struct EnergyRequest<'a> {
-    /// A built-in energy name (`energy.name`).
+    /// A built-in energy name (`energy.name`, or `fibers.energy`).
     pub name: Option<&'a str>,
-    /// A resolved `.psi` path (`energy.psi`).
+    /// A resolved `.psi` path (`energy.psi`, or a `fibers.energy` ending in `.psi`).
     pub psi: Option<&'a Path>,
-    /// Parameter overrides (`energy.params`), sorted by name.
+    /// Parameter overrides (`energy.params` or `fibers.params`), sorted by name.
     pub params: &'a [(String, f64)],
+}
+
+/// The body's energy (`[energy]`): the isotropic energy and, for a `.psi`
+/// file declaring `fiber a`, its fibre part ψ(I4, I5), which the scene
+/// places on the `[fibers]` directions (it needs them). Both parts carry
+/// the file's parameters with `energy.params` applied.
+pub struct BodyEnergy<const D: usize> {
+    /// Ψ (Ψ_iso for a file with a fibre part).
+    pub energy: Box<dyn Energy<D>>,
+    /// ψ(I4, I5) of a `.psi` with `fiber a`; `None` otherwise.
+    pub fibre: Option<Box<dyn FibreEnergy<D>>>,
+}
+
+impl<const D: usize> BodyEnergy<D> {
+    /// An energy without a fibre part.
+    pub fn isotropic(energy: Box<dyn Energy<D>>) -> Self {
+        BodyEnergy {
+            energy,
+            fibre: None,
+        }
+    }
 }
 
 /// Why an energy could not be provided (mapped to the scene key at fault).
@@ -55,6 +78,14 @@ impl std::fmt::Display for EnergyError {
 }
 
 /// Provides 2D and 3D energies by name or `.psi` file.
+///
+/// Scenes ask [`EnergySource::body2`]/[`EnergySource::body3`] for the
+/// body's energy and [`EnergySource::fibre2`]/[`EnergySource::fibre3`] for
+/// `[fibers] energy`. The defaults serve providers that only implement
+/// `energy2`/`energy3`: no fibre part for the body (such a provider must
+/// refuse a `.psi` with `fiber a` in `energy2`/`energy3`, as
+/// `ecc_interp::load_psi` does, never drop it), and the runtime's
+/// hand-written fibre energies ([`runtime_fibre`]).
 pub trait EnergySource {
     /// A 2D energy (triangles: planar deformation, parameterisation).
     fn energy2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<2>>, EnergyError>;
@@ -62,6 +93,67 @@ pub trait EnergySource {
     fn energy3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn Energy<3>>, EnergyError>;
     /// The built-in names (for messages and `--help`).
     fn names(&self) -> Vec<String>;
+
+    /// The body's 2D energy with the fibre part of a `.psi` (default:
+    /// [`EnergySource::energy2`], no fibre part).
+    fn body2(&self, req: &EnergyRequest<'_>) -> Result<BodyEnergy<2>, EnergyError> {
+        self.energy2(req).map(BodyEnergy::isotropic)
+    }
+    /// The body's 3D energy with the fibre part of a `.psi` (default:
+    /// [`EnergySource::energy3`], no fibre part).
+    fn body3(&self, req: &EnergyRequest<'_>) -> Result<BodyEnergy<3>, EnergyError> {
+        self.energy3(req).map(BodyEnergy::isotropic)
+    }
+    /// A 2D fibre energy ψ(I4, I5) by name or `.psi` file (default: [`runtime_fibre`]).
+    fn fibre2(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<2>>, EnergyError> {
+        runtime_fibre::<2>(req)
+    }
+    /// A 3D fibre energy ψ(I4, I5) by name or `.psi` file (default: [`runtime_fibre`]).
+    fn fibre3(&self, req: &EnergyRequest<'_>) -> Result<Box<dyn FibreEnergy<3>>, EnergyError> {
+        runtime_fibre::<3>(req)
+    }
+    /// The fibre energies' names (default: the runtime's, [`FIBRE_NAMES`]).
+    fn fibre_names(&self) -> Vec<String> {
+        FIBRE_NAMES.iter().map(|s| s.to_string()).collect()
+    }
+}
+
+/// Apply parameter overrides through [`FibreEnergy::set_fibre_param`].
+pub fn apply_fibre_params<const D: usize>(
+    energy: &mut dyn FibreEnergy<D>,
+    params: &[(String, f64)],
+) -> Result<(), EnergyError> {
+    for (name, value) in params {
+        energy
+            .set_fibre_param(name, *value)
+            .map_err(|e: ParamError| EnergyError::Param(e.to_string()))?;
+    }
+    Ok(())
+}
+
+/// The runtime's hand-written fibre energies
+/// ([`ecc_runtime::energies::fibre_by_name`]: `fibre-stvk`, `fibre-arap`,
+/// `fibre-fung`) with parameter overrides; `.psi` files are refused (no
+/// interpreter here).
+pub fn runtime_fibre<const D: usize>(
+    req: &EnergyRequest<'_>,
+) -> Result<Box<dyn FibreEnergy<D>>, EnergyError> {
+    if let Some(p) = req.psi {
+        return Err(EnergyError::File(format!(
+            "`{}`: this program has no .psi interpreter for fibre energies (the `ecc` CLI and the \
+             Python package have one); use one of {FIBRE_NAMES:?}",
+            p.display()
+        )));
+    }
+    let name = req.name.unwrap_or_default();
+    let mut e = ecc_runtime::energies::fibre_by_name::<D>(name).ok_or_else(|| {
+        EnergyError::UnknownName {
+            name: name.to_string(),
+            known: FIBRE_NAMES.iter().map(|s| s.to_string()).collect(),
+        }
+    })?;
+    apply_fibre_params(e.as_mut(), req.params)?;
+    Ok(e)
 }
 
 /// Apply parameter overrides through [`Energy::set_param`].

@@ -110,7 +110,7 @@ pub mod terms;
 
 pub use body::Body;
 pub use counters::{Counter, CounterValues, Counters};
-pub use energy::{EnergyError, EnergyRequest, EnergySource, RuntimeEnergies};
+pub use energy::{BodyEnergy, EnergyError, EnergyRequest, EnergySource, RuntimeEnergies};
 pub use error::{Location, OutputFailure, SceneError, WriteFailure};
 pub use sim::{FinalState, FrameLines, Observer, RunOptions, RunReport, Silent, run_scene};
 pub use spec::{Scene, SceneFile};

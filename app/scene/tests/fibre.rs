@@ -87,7 +87,7 @@ fn bad_fibre_keys_are_located_errors() {
         ),
         (
             "energy = \"muscle.psi\"\ndirection = [1, 0, 0]",
-            "not supported by scenes yet",
+            "no .psi interpreter for fibre energies",
         ),
         ("params = { k9 = 1.0 }\ndirection = [1, 0, 0]", "k9"),
         ("field = \"fiber\"", "needs `mesh.file`"),

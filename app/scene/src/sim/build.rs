@@ -24,6 +24,7 @@ use std::sync::Arc;
 
 use ecc_fem::elastic::Projection;
 use ecc_fem::{Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
+use ecc_runtime::FibreEnergy;
 
 use super::engine::{Engine, Slots};
 use crate::body::Body;
@@ -99,6 +100,9 @@ pub struct EngineInput<'a, const D: usize> {
     pub rest2: Option<Vec<[f64; D]>>,
     /// Run counters.
     pub counters: Arc<Counters>,
+    /// The fibre energy on the `[fibers]` directions, if any
+    /// ([`crate::terms::fibre::fibre_energy`]).
+    pub fibre: Option<Arc<dyn FibreEnergy<D>>>,
 }
 
 /// The up direction +y in D dimensions.
@@ -338,6 +342,7 @@ pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<
         boundary,
         rest2,
         counters,
+        fibre,
     } = input;
     let (handles, fixed) = scene_handles(file, &body, vertex_map)?;
     let mut list = TermList {
@@ -345,7 +350,7 @@ pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<
         slots: Slots::default(),
     };
     elastic_term(&mut list, &body, rest2.as_deref(), &counters)?;
-    if let Some(t) = crate::terms::fibre::fibre_term(file, &body)? {
+    if let Some(t) = crate::terms::fibre::fibre_term(file, &body, fibre)? {
         list.push(t);
     }
     let weight = gravity_term(&mut list, file, &body, &counters)?;

@@ -5,6 +5,8 @@
 use std::sync::Arc;
 use std::time::Instant;
 
+use ecc_runtime::FibreEnergy;
+
 use super::build::{EngineInput, build_engine, frame_count};
 use super::context::{Context, RunReport, energy_stats, finish, term_stats};
 use super::engine::Engine;
@@ -40,6 +42,7 @@ pub(crate) fn run_frames<const D: usize>(
     body: Body<D>,
     boundary: Vec<usize>,
     rest2: Option<Vec<[f64; D]>>,
+    fibre: Option<Arc<dyn FibreEnergy<D>>>,
     out: &mut Option<OutputDir>,
     obs: &mut dyn Observer,
 ) -> Result<RunReport, SceneError>
@@ -57,6 +60,7 @@ where
         boundary,
         rest2,
         counters: counters.clone(),
+        fibre,
     })?;
     let setup_seconds = ctx.t0.elapsed().as_secs_f64();
     let stepped = step_frames(ctx, &mut engine, writer.as_ref(), out, obs)?;

@@ -21,6 +21,7 @@ use crate::error::SceneError;
 use crate::output::OutputDir;
 use crate::setup::mesh::{MeshKind, load};
 use crate::spec::{SceneFile, validate};
+use crate::terms::fibre;
 
 fn energy_error(file: &SceneFile, e: EnergyError) -> SceneError {
     let key = match (&e, file.scene.energy.psi.is_some()) {
@@ -97,17 +98,14 @@ fn run_inner(
     };
     match &loaded.kind {
         MeshKind::Surface(mesh) => {
-            let e: Arc<dyn Energy<2>> = source
-                .energy2(&req)
-                .map_err(|e| energy_error(file, e))?
-                .into();
-            run_parameterization(&ctx, mesh, e, &mut out, obs)
+            let be = source.body2(&req).map_err(|e| energy_error(file, e))?;
+            fibre::refuse_in_parameterisation(file, be.fibre.is_some())?;
+            run_parameterization(&ctx, mesh, be.energy.into(), &mut out, obs)
         }
         MeshKind::Planar(mesh) => {
-            let e: Arc<dyn Energy<2>> = source
-                .energy2(&req)
-                .map_err(|e| energy_error(file, e))?
-                .into();
+            let be = source.body2(&req).map_err(|e| energy_error(file, e))?;
+            let fibre = fibre::fibre_energy::<2>(file, source, be.fibre)?;
+            let e: Arc<dyn Energy<2>> = be.energy.into();
             let rest: Vec<[f64; 2]> = mesh.positions.iter().map(|p| [p[0], p[1]]).collect();
             let body = Body::planar(rest, &mesh.triangles, e)
                 .with_projection(build::projection(&file.scene.solver));
@@ -115,13 +113,12 @@ fn run_inner(
                 .map(|l| l.into_iter().flatten().collect())
                 .unwrap_or_else(|_| (0..mesh.positions.len()).collect());
             let rest2 = second_rest_2d(file, &body, &loaded)?;
-            run_frames(&ctx, body, boundary, rest2, &mut out, obs)
+            run_frames(&ctx, body, boundary, rest2, fibre, &mut out, obs)
         }
         MeshKind::Volume(mesh) => {
-            let e: Arc<dyn Energy<3>> = source
-                .energy3(&req)
-                .map_err(|e| energy_error(file, e))?
-                .into();
+            let be = source.body3(&req).map_err(|e| energy_error(file, e))?;
+            let fibre = fibre::fibre_energy::<3>(file, source, be.fibre)?;
+            let e: Arc<dyn Energy<3>> = be.energy.into();
             let body = Body::volume(mesh.positions.clone(), &mesh.tets, e)
                 .with_projection(build::projection(&file.scene.solver));
             let mut boundary: Vec<usize> = tet_boundary_faces(&mesh.tets)
@@ -131,7 +128,7 @@ fn run_inner(
             boundary.sort_unstable();
             boundary.dedup();
             let rest2 = second_rest_3d(file, &body, &loaded)?;
-            run_frames(&ctx, body, boundary, rest2, &mut out, obs)
+            run_frames(&ctx, body, boundary, rest2, fibre, &mut out, obs)
         }
     }
 }

@@ -9,10 +9,12 @@
 //! | `around = { point = [..], axis = [..], angle = 30 }` | circumferential around the axis, turned by `angle` degrees towards it (a helix; 3D) |
 //! | `curve = [[x, y, z], ..]` | the tangent of the nearest polyline segment |
 //!
-//! `energy` is a hand-written fibre energy (`fibre-stvk` (default),
-//! `fibre-arap`, `fibre-fung`) with `params` (`mu`; `k1`, `k2`). A `.psi`
-//! file with a fibre part is the seam for the compiler's fibre energies (not
-//! yet: a clear error says so).
+//! `energy` is a fibre energy of the scene's provider by name (`fibre-stvk`
+//! (default), `fibre-arap`, `fibre-fung`) with `params` (`mu`; `k1`, `k2`),
+//! or a `.psi` file whose fibre part ψ(I4, I5) is taken (a file with a
+//! non-zero isotropic part is refused there). The fibre part of
+//! `[energy] psi` needs this table for its directions and refuses `energy`
+//! and `params` here (see `crate::terms::fibre`).
 
 use std::collections::BTreeMap;
 
@@ -22,7 +24,7 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FibreSpec {
-    /// `fibre-stvk` (default), `fibre-arap` or `fibre-fung`.
+    /// `fibre-stvk` (default), `fibre-arap`, `fibre-fung`, or a `.psi` path.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub energy: Option<String>,
     /// Parameter values by name.

@@ -1,5 +1,25 @@
 //! The `[fibers]` term: directions from the scene or the mesh file, a
-//! hand-written fibre energy, and `ecc_fem::Fibre` over the body's elements.
+//! fibre energy from the [`EnergySource`], and `ecc_fem::Fibre` over the
+//! body's elements.
+//!
+//! The fibre energy ψ(I4, I5) is exactly one of:
+//!
+//! * `[fibers] energy = "NAME"` (default `fibre-stvk`): a named fibre energy
+//!   of the provider (the `ecc` CLI and the Python package: the generated
+//!   library, `energies/psi/fibre_*.psi`; [`crate::RuntimeEnergies`]: the
+//!   runtime's hand-written ones), with `[fibers] params`;
+//! * `[fibers] energy = "x.psi"`: the fibre part of that file, with
+//!   `[fibers] params` (the file's parameters). A file whose isotropic part
+//!   is not 0 is refused (the provider's error names the fix: give it as
+//!   `[energy] psi`), since taking ψ alone would drop Ψ_iso;
+//! * `[energy] psi = "x.psi"` declaring `fiber a`: its fibre part, with
+//!   `[energy] params` (shared by both parts, as in the file), while its
+//!   isotropic part is the body's energy. `[fibers]` is then required (it
+//!   gives the directions), and `[fibers] energy` / `[fibers] params` are
+//!   refused as conflicting.
+//!
+//! A parameterisation takes no fibre term (`[fibers]`, or a `.psi` with a
+//! fibre part, is refused there).
 //!
 //! File fields (`field`, `references`) are per element of `mesh.file` in
 //! file order and in file coordinates: they are rejected together with
@@ -13,13 +33,16 @@ use std::sync::Arc;
 
 use ecc_fem::{Fibre, Term};
 use ecc_mesh::{FibreGenerator, check_directions, from_references, read_vtk_fibres};
-use ecc_runtime::energies::{FIBRE_NAMES, fibre_by_name};
 use ecc_runtime::fibre::{FibreDim, FibreEnergy};
 use ecc_runtime::{Dim, Space};
 
 use crate::body::Body;
+use crate::energy::{EnergyError, EnergyRequest, EnergySource};
 use crate::error::SceneError;
 use crate::spec::{FibreSpec, SceneFile};
+
+/// The fibre energy of a `[fibers]` table without `energy`.
+pub const DEFAULT_FIBRE: &str = "fibre-stvk";
 
 fn invalid(key: &str, msg: impl Into<String>) -> SceneError {
     SceneError::invalid(format!("fibers.{key}"), msg)
@@ -36,28 +59,116 @@ fn vector<const D: usize>(key: &str, v: &[f64]) -> Result<[f64; D], SceneError> 
     Ok(std::array::from_fn(|i| v[i]))
 }
 
-/// The energy with its parameters.
-fn energy<const D: usize>(spec: &FibreSpec) -> Result<Arc<dyn FibreEnergy<D>>, SceneError> {
-    let name = spec.energy.as_deref().unwrap_or("fibre-stvk");
-    if name.ends_with(".psi") {
-        return Err(invalid(
-            "energy",
+/// The scene's fibre energy (see the module docs), given the fibre part of
+/// the body's energy (`body_fibre`, from [`EnergySource::body2`]/`body3`):
+/// `None` when the scene has no fibre term.
+pub fn fibre_energy<const D: usize>(
+    file: &SceneFile,
+    source: &dyn EnergySource,
+    body_fibre: Option<Box<dyn FibreEnergy<D>>>,
+) -> Result<Option<Arc<dyn FibreEnergy<D>>>, SceneError> {
+    let psi = file.scene.energy.psi.as_deref().unwrap_or_default();
+    match (&file.scene.fibers, body_fibre) {
+        (None, None) => Ok(None),
+        (None, Some(_)) => Err(SceneError::invalid(
+            "energy.psi",
             format!(
-                "`{name}`: fibre parts of .psi files are not supported by scenes yet; use one of {FIBRE_NAMES:?}"
+                "`{psi}` has a fibre part ψ(I4, I5) (`fiber`), which needs one direction per \
+                 element: add a `[fibers]` section with one of direction, field, references, \
+                 around, curve (its energy and parameters are the file's)"
+            ),
+        )),
+        (Some(spec), Some(f)) => {
+            for (key, given) in [
+                ("energy", spec.energy.is_some()),
+                ("params", !spec.params.is_empty()),
+            ] {
+                if given {
+                    return Err(invalid(
+                        key,
+                        format!(
+                            "conflicts with energy.psi: the fibre part of `{psi}` is the fibre \
+                             energy, with the file's parameters set in `[energy] params` (shared \
+                             by both parts); remove fibers.{key}"
+                        ),
+                    ));
+                }
+            }
+            Ok(Some(Arc::from(f)))
+        }
+        (Some(spec), None) => provided::<D>(file, source, spec).map(Some),
+    }
+}
+
+/// `[fibers] energy` (a name or a `.psi` path) with `[fibers] params`, from the provider.
+fn provided<const D: usize>(
+    file: &SceneFile,
+    source: &dyn EnergySource,
+    spec: &FibreSpec,
+) -> Result<Arc<dyn FibreEnergy<D>>, SceneError> {
+    let written = spec.energy.as_deref().unwrap_or(DEFAULT_FIBRE);
+    let path = written.ends_with(".psi").then(|| file.resolve(written));
+    let params: Vec<(String, f64)> = spec.params.iter().map(|(k, v)| (k.clone(), *v)).collect();
+    let req = EnergyRequest {
+        name: path.is_none().then_some(written),
+        psi: path.as_deref(),
+        params: &params,
+    };
+    let made: Box<dyn Any> = match D {
+        2 => Box::new(source.fibre2(&req)),
+        3 => Box::new(source.fibre3(&req)),
+        _ => return Err(invalid("energy", format!("unsupported dimension {D}"))),
+    };
+    let made = *made
+        .downcast::<Result<Box<dyn FibreEnergy<D>>, EnergyError>>()
+        .expect("same D");
+    made.map(Arc::from).map_err(fibre_error)
+}
+
+/// A provider's error at the `[fibers]` key at fault.
+fn fibre_error(e: EnergyError) -> SceneError {
+    match e {
+        EnergyError::Param(m) => invalid("params", m),
+        EnergyError::UnknownName { name, known } => {
+            let refs: Vec<&str> = known.iter().map(String::as_str).collect();
+            let hint = crate::spec::suggest_name(&name, &refs)
+                .map(|s| format!("; did you mean `{s}`?"))
+                .unwrap_or_default();
+            invalid(
+                "energy",
+                format!(
+                    "unknown fibre energy `{name}` (known: {}, or a .psi file with a fibre part){hint}",
+                    known.join(", ")
+                ),
+            )
+        }
+        other => invalid("energy", other.to_string()),
+    }
+}
+
+/// A parameterisation takes no fibre term: refuse `[fibers]` and a body
+/// energy with a fibre part (`has_fibre_part`) instead of ignoring them.
+pub fn refuse_in_parameterisation(
+    file: &SceneFile,
+    has_fibre_part: bool,
+) -> Result<(), SceneError> {
+    if file.scene.fibers.is_some() {
+        return Err(SceneError::invalid(
+            "fibers",
+            "a parameterisation takes no fibre term (remove [fibers] or effects.parameterize)",
+        ));
+    }
+    if has_fibre_part {
+        let psi = file.scene.energy.psi.as_deref().unwrap_or_default();
+        return Err(SceneError::invalid(
+            "energy.psi",
+            format!(
+                "`{psi}` has a fibre part ψ(I4, I5) (`fiber`): a parameterisation takes no fibre \
+                 term (use an isotropic energy)"
             ),
         ));
     }
-    let mut e = fibre_by_name::<D>(name).ok_or_else(|| {
-        invalid(
-            "energy",
-            format!("unknown fibre energy `{name}` (known: {FIBRE_NAMES:?})"),
-        )
-    })?;
-    for (k, v) in &spec.params {
-        e.set_fibre_param(k, *v)
-            .map_err(|err| invalid(&format!("params.{k}"), err.to_string()))?;
-    }
-    Ok(Arc::from(e))
+    Ok(())
 }
 
 /// Element centroids of a flat simplex list.
@@ -183,18 +294,14 @@ fn build<const D: usize>(
     spec: &FibreSpec,
     file: &SceneFile,
     body: &Body<D>,
+    energy: Arc<dyn FibreEnergy<D>>,
 ) -> Result<Box<dyn Term<D>>, SceneError>
 where
     Space<D>: FibreDim<D> + Dim<D>,
 {
     let dirs = directions(spec, file, body)?;
-    let term = Fibre::<dyn FibreEnergy<D>, D>::from_flat(
-        energy::<D>(spec)?,
-        &body.rest,
-        &body.elements,
-        &dirs,
-    )
-    .map_err(|e| SceneError::setup("the fibre term", e))?;
+    let term = Fibre::<dyn FibreEnergy<D>, D>::from_flat(energy, &body.rest, &body.elements, &dirs)
+        .map_err(|e| SceneError::setup("the fibre term", e))?;
     Ok(Box::new(term))
 }
 
@@ -210,19 +317,34 @@ pub(crate) fn picture_directions<const D: usize>(
     }
 }
 
-/// The fibre term of `[fibers]`, if the scene has one.
+/// The fibre term: `energy` ([`fibre_energy`]) on the `[fibers]`
+/// directions; `None` without a fibre energy.
 pub fn fibre_term<const D: usize>(
     file: &SceneFile,
     body: &Body<D>,
+    energy: Option<Arc<dyn FibreEnergy<D>>>,
 ) -> Result<Option<Box<dyn Term<D>>>, SceneError> {
-    let Some(spec) = &file.scene.fibers else {
+    let Some(energy) = energy else {
         return Ok(None);
     };
+    let Some(spec) = &file.scene.fibers else {
+        return Err(SceneError::invalid(
+            "fibers",
+            "a fibre energy needs a [fibers] section",
+        ));
+    };
     let any_body: &dyn Any = body;
+    let any_energy: Box<dyn Any> = Box::new(energy);
     let term: Box<dyn Any> = if let Some(b) = any_body.downcast_ref::<Body<2>>() {
-        Box::new(build::<2>(spec, file, b)?)
+        let e = any_energy
+            .downcast::<Arc<dyn FibreEnergy<2>>>()
+            .expect("same D");
+        Box::new(build::<2>(spec, file, b, *e)?)
     } else if let Some(b) = any_body.downcast_ref::<Body<3>>() {
-        Box::new(build::<3>(spec, file, b)?)
+        let e = any_energy
+            .downcast::<Arc<dyn FibreEnergy<3>>>()
+            .expect("same D");
+        Box::new(build::<3>(spec, file, b, *e)?)
     } else {
         return Err(invalid("direction", format!("unsupported dimension {D}")));
     };
