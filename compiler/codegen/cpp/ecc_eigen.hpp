@@ -78,6 +78,63 @@ inline ElementEvalE<D> eval_element(const E& energy, const Eigen::Matrix<double,
     return out;
 }
 
+/// The fibre part at F (`energy.fibre_eval(F, a, filter)`) with Eigen in
+/// and out: ψ, I4, I5, vec(∂ψ/∂F) (column-major) and the filtered Hessian.
+template <int D>
+struct FibreEvalE {
+    double psi;
+    double i4;
+    double i5;
+    Eigen::Matrix<double, D * D, 1> grad;
+    Eigen::Matrix<double, D * D, D * D> hess;
+    FibrePath path;
+};
+
+/// `energy.fibre_eval(F, a, filter)` for a unit rest fibre `a`.
+template <int D, class E>
+inline FibreEvalE<D> fibre_eval(const E& energy, const Eigen::Matrix<double, D, D>& F,
+                                const Eigen::Matrix<double, D, 1>& a,
+                                Filter filter = Filter::clamp()) {
+    double fa[D][D], av[D];
+    to_array<D>(F, fa);
+    for (int i = 0; i < D; ++i) av[i] = a(i);
+    FibreEval<D> r = fibre_eval_f<D>(energy, fa, av, filter);
+    FibreEvalE<D> out;
+    out.psi = r.psi;
+    out.i4 = r.i4;
+    out.i5 = r.i5;
+    out.path = r.path;
+    for (int i = 0; i < D * D; ++i) {
+        out.grad(i) = r.grad[i];
+        for (int j = 0; j < D * D; ++j) out.hess(i, j) = r.hess[i][j];
+    }
+    return out;
+}
+
+/// The fibre part of an element (as `eval_element`) for a unit rest fibre `a`.
+template <int D, class E>
+inline ElementEvalE<D> fibre_eval_element(const E& energy, const Eigen::Matrix<double, D, D + 1>& x,
+                                          const Eigen::Matrix<double, D, D>& dm_inv, double measure,
+                                          const Eigen::Matrix<double, D, 1>& a,
+                                          Filter filter = Filter::clamp(), bool want_hessian = true) {
+    constexpr int N = D * (D + 1);
+    Eigen::Matrix<double, D, D> ds;
+    for (int k = 0; k < D; ++k) ds.col(k) = x.col(k + 1) - x.col(0);
+    const Eigen::Matrix<double, D, D> fm = ds * dm_inv;
+    double f[D][D], di[D][D], av[D];
+    to_array<D>(fm, f);
+    to_array<D>(dm_inv, di);
+    for (int i = 0; i < D; ++i) av[i] = a(i);
+    ElementEval<N> r = fibre_eval_element_f<D>(energy, f, di, measure, av, filter, want_hessian);
+    ElementEvalE<D> out;
+    out.psi = r.psi;
+    for (int i = 0; i < N; ++i) {
+        out.grad(i) = r.grad[i];
+        for (int j = 0; j < N; ++j) out.hess(i, j) = r.hess[i][j];
+    }
+    return out;
+}
+
 }  // namespace eigen
 }  // namespace ecc
 
