@@ -170,6 +170,8 @@ fn line(a: &Args, m: &mtx::UpperCsc, ordering: FillOrdering, r: &Run) -> serde_j
         "supernodal": f.is_supernodal(),
         "nnz_l": f.factor_nnz(),
         "flops": f.factor_flops(),
+        "split_separator": f.split().map(|s| s.0),
+        "critical_flops": f.split().map(|s| s.1),
         "analyze_s": r.analyze_s,
         "factor_best_s": best,
         "factor_mean_s": mean,

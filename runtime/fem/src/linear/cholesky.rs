@@ -25,6 +25,7 @@ use faer::{Conj, MatMut, Par, Side};
 
 use serde::{Deserialize, Serialize};
 
+mod half;
 mod split;
 mod threads;
 mod tree;

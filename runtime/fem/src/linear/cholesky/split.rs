@@ -12,40 +12,40 @@
 //! ```
 //!
 //! **Factorisation.** Bᵢ = A[Pᵢ∪S, Pᵢ∪S] (a principal submatrix of an SPD
-//! matrix, so SPD) is factorised by faer, sequentially, both halves at once
-//! (`rayon::join`), with Pᵢ in a fill-reducing order (block AMD of its vertex
-//! graph) and S last:
+//! matrix, so SPD), with Pᵢ in the fill-reducing order of the plain
+//! analysis and S last, has the Cholesky factor
 //!
 //! ```text
 //! Bᵢ = ⎡ Aᵢᵢ  AᵢS ⎤ = ⎡ Lᵢ    0       ⎤ ⎡ Lᵢᵀ  L_Siᵀ    ⎤            (2)
 //!      ⎣ ASᵢ  ASS ⎦   ⎣ L_Si  L_SS⁽ⁱ⁾ ⎦ ⎣ 0    L_SS⁽ⁱ⁾ᵀ ⎦
 //! ```
 //!
-//! so L_Si = ASᵢ Lᵢ⁻ᵀ and L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ = ASS − L_Si L_Siᵀ. The Schur complement
-//! of A₁₁ ⊕ A₂₂ in A is then
+//! with L_Si = ASᵢ Lᵢ⁻ᵀ. Each half factorises only its Pᵢ columns, Lᵢ and
+//! L_Si, and gathers Uᵢ = −L_Si L_Siᵀ from them ([`super::half`], (7)–(8)),
+//! sequentially, both halves at once (`rayon::join`); L_SS⁽ⁱ⁾ is never
+//! formed. The Schur complement of A₁₁ ⊕ A₂₂ in A is then
 //!
 //! ```text
-//! Σ = ASS − L_S1 L_S1ᵀ − L_S2 L_S2ᵀ = L_SS⁽¹⁾L_SS⁽¹⁾ᵀ + L_SS⁽²⁾L_SS⁽²⁾ᵀ − ASS   (3)
+//! Σ = ASS − L_S1 L_S1ᵀ − L_S2 L_S2ᵀ = ASS + U₁ + U₂                          (3)
 //! ```
 //!
 //! (SPD as a Schur complement of an SPD matrix), factorised densely,
 //! Σ = L_Σ L_Σᵀ (faer, on the pool's threads when it is large).
 //!
-//! **Solve** of A x = b. Forward, per half (concurrently), a lower solve of
-//! Bᵢ's factor on [bᵢ; 0] gives [yᵢ; zᵢ] with
+//! **Solve** of A x = b. Forward, per half (concurrently), the lower solve
+//! through the Pᵢ columns of Bᵢ's factor on [bᵢ; 0] gives
 //!
 //! ```text
-//! yᵢ = Lᵢ⁻¹ bᵢ,   L_SS⁽ⁱ⁾ zᵢ = −L_Si yᵢ                                   (4)
+//! yᵢ = Lᵢ⁻¹ bᵢ   and   zᵢ = −L_Si yᵢ                                          (4)
 //! ```
 //!
 //! and the separator's reduced right-hand side and unknowns are
 //!
 //! ```text
-//! r_S = b_S − Σᵢ L_Si yᵢ = b_S + Σᵢ L_SS⁽ⁱ⁾ zᵢ,   x_S = L_Σ⁻ᵀ L_Σ⁻¹ r_S          (5)
+//! r_S = b_S − Σᵢ L_Si yᵢ = b_S + z₁ + z₂,   x_S = L_Σ⁻ᵀ L_Σ⁻¹ r_S              (5)
 //! ```
 //!
-//! Backward, per half, an upper solve of Bᵢ's factor on [yᵢ; L_SS⁽ⁱ⁾ᵀ x_S]:
-//! its last block is L_SS⁽ⁱ⁾⁻ᵀ L_SS⁽ⁱ⁾ᵀ x_S = x_S, so its first block is
+//! Backward, per half, the upper solve through the Pᵢ columns on [yᵢ; x_S]:
 //!
 //! ```text
 //! xᵢ = Lᵢ⁻ᵀ (yᵢ − L_Siᵀ x_S) = Aᵢᵢ⁻¹ (bᵢ − AᵢS x_S)                          (6)
@@ -54,27 +54,21 @@
 //! (Lᵢ⁻¹AᵢS = L_Siᵀ by (2)), the block back-substitution of (1).
 //!
 //! The extra work over one sparse factorisation is the separator's dense
-//! block, computed three times (once per half inside Bᵢ, once for Σ) plus the
-//! two products of (3): with k = |S|, about k³ flops, small next to the
-//! halves when k ≪ n. Each half is sequential and the reductions run in a
-//! fixed order, so the result is the same bits run to run for a given
-//! number of threads.
+//! Cholesky, k³/3 flops (k = |S|), once, where the plain factorisation
+//! spends about as much on S's columns: the halves' work is exactly their
+//! share of the plain factorisation's (their updates of S included). Each
+//! half is sequential and the reductions run in a fixed order, so the result
+//! is the same bits run to run for a given number of threads.
 
-use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
+use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, cholesky_in_place, cholesky_in_place_scratch};
-use faer::linalg::matmul::triangular::{BlockStructure, matmul};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
-    factorize_symbolic_cholesky,
-};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{Accum, Conj, MatMut, MatRef, Par};
+use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
+use faer::{MatMut, MatRef, Par};
 
+use super::half::Half;
 use super::tree::{Part, split};
 use crate::error::FemError;
 use crate::pattern::Pattern;
@@ -83,36 +77,11 @@ use crate::pattern::Pattern;
 /// threads (below, fork/join costs more than the dense kernels gain).
 const DENSE_PARALLEL_MIN: usize = 256;
 
-/// Bᵢ = A[Pᵢ∪S, Pᵢ∪S] of (2): its pattern, symbolic analysis and storage.
-struct Half {
-    /// Original unknown of each local one: Pᵢ in fill-reducing order, then S.
-    unknowns: Vec<usize>,
-    /// |Pᵢ|.
-    n_p: usize,
-    col_ptr: Vec<usize>,
-    row_idx: Vec<usize>,
-    /// Slot in A's values of each entry of Bᵢ's (upper) pattern.
-    gather: Vec<usize>,
-    vals: Vec<f64>,
-    symbolic: SymbolicCholesky<usize>,
-    l_values: Vec<f64>,
-    mem: MemBuffer,
-    /// L_SS⁽ⁱ⁾ of (2), k×k column-major (entries outside L's structure stay 0).
-    l_ss: Vec<f64>,
-    /// L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ of (3), k×k column-major, lower triangle.
-    product: Vec<f64>,
-    /// The solve vector [yᵢ; zᵢ] of (4), then [xᵢ; x_S] of (6).
-    work: Vec<f64>,
-    /// L_SS⁽ⁱ⁾ zᵢ of (5).
-    t: Vec<f64>,
-    flops: f64,
-}
-
-fn oom(what: &str) -> FemError {
+pub(super) fn oom(what: &str) -> FemError {
     FemError::Symbolic(format!("out of memory for {what}"))
 }
 
-fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
+pub(super) fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len).map_err(|_| oom(what))?;
     v.resize(len, 0.0);
@@ -121,7 +90,10 @@ fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
 
 /// Upper-triangular CSC pattern of A[unknowns, unknowns] in the local order
 /// and the slot in A of each of its entries.
-fn sub_pattern(pattern: &Pattern, unknowns: &[usize]) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+pub(super) fn sub_pattern(
+    pattern: &Pattern,
+    unknowns: &[usize],
+) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
     let n = unknowns.len();
     let mut local = vec![usize::MAX; pattern.n()];
     unknowns.iter().enumerate().for_each(|(l, &u)| local[u] = l);
@@ -147,192 +119,6 @@ fn sub_pattern(pattern: &Pattern, unknowns: &[usize]) -> (Vec<usize>, Vec<usize>
         col_ptr.push(row_idx.len());
     }
     (col_ptr, row_idx, gather)
-}
-
-/// The supernodal factor of a half (analysed with FORCE_SUPERNODAL).
-fn supernodal<'a>(
-    symbolic: &'a SymbolicCholesky<usize>,
-    l_values: &'a [f64],
-) -> SupernodalLltRef<'a, usize, f64> {
-    let SymbolicCholeskyRaw::Supernodal(s) = symbolic.raw() else {
-        unreachable!("the halves are analysed with FORCE_SUPERNODAL")
-    };
-    SupernodalLltRef::new(s, l_values)
-}
-
-impl Half {
-    /// Pattern and symbolic analysis of Bᵢ whose unknowns are `unknowns`
-    /// (the first `n_p` are Pᵢ, the rest S, each in elimination order; storage
-    /// comes later, in [`Half::allocate`]).
-    fn analyse(pattern: &Pattern, unknowns: Vec<usize>, n_p: usize) -> Result<Self, FemError> {
-        let n = unknowns.len();
-        let (col_ptr, row_idx, gather) = sub_pattern(pattern, &unknowns);
-        let a = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        };
-        let symbolic =
-            factorize_symbolic_cholesky(a, faer::Side::Upper, SymmetricOrdering::Identity, params)
-                .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
-        let flops = super::flops(&symbolic);
-        Ok(Half {
-            unknowns,
-            n_p,
-            col_ptr,
-            row_idx,
-            gather,
-            vals: Vec::new(),
-            symbolic,
-            l_values: Vec::new(),
-            mem: MemBuffer::new(StackReq::EMPTY),
-            l_ss: Vec::new(),
-            product: Vec::new(),
-            work: Vec::new(),
-            t: Vec::new(),
-            flops,
-        })
-    }
-
-    fn k(&self) -> usize {
-        self.unknowns.len() - self.n_p
-    }
-
-    /// Allocate the factor values and all scratch.
-    fn allocate(&mut self) -> Result<(), FemError> {
-        let (n, k) = (self.unknowns.len(), self.k());
-        let req = StackReq::any_of(&[
-            self.symbolic
-                .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-            self.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq),
-        ]);
-        self.mem = MemBuffer::try_new(req).map_err(|_| oom("scratch"))?;
-        self.l_values = zeros(self.symbolic.len_val(), "a split factor")?;
-        self.vals = zeros(self.gather.len(), "a split block")?;
-        self.l_ss = zeros(k * k, "the separator block")?;
-        self.product = zeros(k * k, "the separator block")?;
-        self.work = zeros(n, "the solve")?;
-        self.t = zeros(k, "the solve")?;
-        Ok(())
-    }
-
-    fn supernodal(&self) -> SupernodalLltRef<'_, usize, f64> {
-        supernodal(&self.symbolic, &self.l_values)
-    }
-
-    /// Numeric LLᵀ of Bᵢ (2) on one thread, then copy out L_SS⁽ⁱ⁾ and form
-    /// its term of (3), L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ. On a non-positive pivot, its local
-    /// index.
-    fn factorize(&mut self, values: &[f64]) -> Result<(), usize> {
-        for (v, &slot) in self.vals.iter_mut().zip(&self.gather) {
-            *v = values[slot];
-        }
-        let n = self.unknowns.len();
-        let sym = SymbolicSparseColMatRef::new_checked(n, n, &self.col_ptr, None, &self.row_idx);
-        let result = self.symbolic.factorize_numeric_llt::<f64>(
-            &mut self.l_values,
-            SparseColMatRef::new(sym, &self.vals),
-            faer::Side::Upper,
-            Default::default(),
-            Par::Seq,
-            MemStack::new(&mut self.mem),
-            Default::default(),
-        );
-        match result {
-            Ok(_) => {
-                self.extract_l_ss();
-                self.form_product();
-                Ok(())
-            }
-            Err(LltError::NonPositivePivot { index }) => Err(index),
-        }
-    }
-
-    /// Copy the rows and columns ≥ |Pᵢ| of L (the trailing block of (2)).
-    fn extract_l_ss(&mut self) {
-        let (n_p, k) = (self.n_p, self.k());
-        let mut l_ss = std::mem::take(&mut self.l_ss);
-        let llt = self.supernodal();
-        let s = llt.symbolic();
-        let first = s.supernode_end().partition_point(|&e| e <= n_p);
-        for node in (first..s.n_supernodes()).map(|i| llt.supernode(i)) {
-            let (start, val) = (node.start(), node.val());
-            let w = val.ncols();
-            for c in (0..w).filter(|&c| start + c >= n_p) {
-                let col = &mut l_ss[k * (start + c - n_p)..][..k];
-                for t in c..w {
-                    col[start + t - n_p] = val[(t, c)];
-                }
-                for (idx, &r) in node.pattern().iter().enumerate() {
-                    col[r - n_p] = val[(w + idx, c)];
-                }
-            }
-        }
-        self.l_ss = l_ss;
-    }
-
-    /// `product` = L_SS⁽ⁱ⁾L_SS⁽ⁱ⁾ᵀ (lower triangle), on this thread.
-    fn form_product(&mut self) {
-        let k = self.k();
-        if k == 0 {
-            return;
-        }
-        let l = MatRef::from_column_major_slice(&self.l_ss, k, k);
-        matmul(
-            MatMut::from_column_major_slice_mut(&mut self.product, k, k),
-            BlockStructure::TriangularLower,
-            Accum::Replace,
-            l,
-            BlockStructure::TriangularLower,
-            l.transpose(),
-            BlockStructure::TriangularUpper,
-            1.0,
-            Par::Seq,
-        );
-    }
-
-    /// Forward half of the solve: [yᵢ; zᵢ] of (4) in `work` and
-    /// t = L_SS⁽ⁱ⁾ zᵢ (5).
-    fn forward(&mut self, b: &[f64]) {
-        let (n, n_p, k) = (self.unknowns.len(), self.n_p, self.k());
-        let mut work = std::mem::take(&mut self.work);
-        for (w, &u) in work.iter_mut().zip(&self.unknowns[..n_p]) {
-            *w = b[u];
-        }
-        work[n_p..].fill(0.0);
-        supernodal(&self.symbolic, &self.l_values).l_solve_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut work, n, 1),
-            Par::Seq,
-            MemStack::new(&mut self.mem),
-        );
-        let z = &work[n_p..];
-        self.t.fill(0.0);
-        for (c, &zc) in z.iter().enumerate() {
-            let col = &self.l_ss[k * c..][..k];
-            for (t, l) in self.t[c..].iter_mut().zip(&col[c..]) {
-                *t += l * zc;
-            }
-        }
-        self.work = work;
-    }
-
-    /// Backward half of the solve (6): `work` becomes [xᵢ; x_S].
-    fn backward(&mut self, x_s: &[f64]) {
-        let (n, n_p, k) = (self.unknowns.len(), self.n_p, self.k());
-        let mut work = std::mem::take(&mut self.work);
-        for (c, u) in work[n_p..].iter_mut().enumerate() {
-            let col = &self.l_ss[k * c..][..k];
-            *u = (c..k).map(|r| col[r] * x_s[r]).sum();
-        }
-        supernodal(&self.symbolic, &self.l_values).l_transpose_solve_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut work, n, 1),
-            Par::Seq,
-            MemStack::new(&mut self.mem),
-        );
-        self.work = work;
-    }
 }
 
 /// The two-way split factor of (1)–(3).
@@ -390,10 +176,7 @@ impl SplitFactor {
         Self::with_halves(pattern, halves).map(Some)
     }
 
-    fn with_halves(pattern: &Pattern, mut halves: [Half; 2]) -> Result<Self, FemError> {
-        for h in &mut halves {
-            h.allocate()?;
-        }
+    fn with_halves(pattern: &Pattern, halves: [Half; 2]) -> Result<Self, FemError> {
         let sep = halves[0].unknowns[halves[0].n_p..].to_vec();
         let k = sep.len();
         let (col_ptr, row_idx, gather) = sub_pattern(pattern, &sep);
@@ -434,18 +217,26 @@ impl SplitFactor {
     /// Stored values: both halves' factors and the dense L_Σ.
     pub(crate) fn nnz(&self) -> usize {
         let k = self.sep.len();
-        self.halves.iter().map(|h| h.l_values.len()).sum::<usize>() + k * (k + 1) / 2
+        self.halves.iter().map(|h| h.len_val()).sum::<usize>() + k * (k + 1) / 2
+    }
+
+    /// Flops Σ_{j<k} (k − j)² ≈ k³/3 of the dense L_Σ, in the measure of
+    /// [`super::flops`].
+    fn dense_flops(&self) -> f64 {
+        (1..=self.sep.len()).map(|c| (c as f64).powi(2)).sum()
     }
 
     /// Estimated flops, in the measure of [`super::flops`] (Σ c² over the
-    /// columns): both halves plus ≈ k³ for the three dense k×k terms.
+    /// columns): both halves' Pᵢ columns (their S updates included) plus
+    /// the dense L_Σ.
     pub(crate) fn flops(&self) -> f64 {
-        self.halves.iter().map(|h| h.flops).sum::<f64>() + (self.sep.len() as f64).powi(3)
+        self.halves.iter().map(|h| h.flops).sum::<f64>() + self.dense_flops()
     }
 
-    /// Estimated flops of the larger half (the critical path with 2 threads).
+    /// Estimated flops of the critical path with 2 threads: the larger
+    /// half, then L_Σ.
     pub(crate) fn critical_flops(&self) -> f64 {
-        self.halves[0].flops.max(self.halves[1].flops)
+        self.halves[0].flops.max(self.halves[1].flops) + self.dense_flops()
     }
 
     /// Map a pivot of half `i` (local index) to the order (P₁, P₂, S).
@@ -484,20 +275,20 @@ impl SplitFactor {
             return Ok(());
         }
         let par = Self::dense_par(k);
-        let (m1, m2) = (&self.halves[0].product, &self.halves[1].product);
+        let (u1, u2) = (&self.halves[0].update, &self.halves[1].update);
         for c in 0..k {
             let at = k * c + c..k * (c + 1);
             for ((s, a), b) in self.schur[at.clone()]
                 .iter_mut()
-                .zip(&m1[at.clone()])
-                .zip(&m2[at])
+                .zip(&u1[at.clone()])
+                .zip(&u2[at])
             {
                 *s = a + b;
             }
         }
         for &(c, r, slot) in &self.a_ss {
             // a_ss holds (column j, row i ≤ j): store at (max, min) = lower
-            self.schur[r.max(c) + k * r.min(c)] -= values[slot];
+            self.schur[r.max(c) + k * r.min(c)] += values[slot];
         }
         let schur = MatMut::from_column_major_slice_mut(&mut self.schur, k, k);
         cholesky_in_place(
@@ -535,8 +326,9 @@ impl SplitFactor {
             let [h1, h2] = &mut self.halves;
             rayon::join(|| h1.forward(b), || h2.forward(b));
         }
+        let [z1, z2] = [0, 1].map(|i| &self.halves[i].work[self.halves[i].n_p..]);
         for (j, x) in self.x_s.iter_mut().enumerate() {
-            *x = rhs[self.sep[j]] + self.halves[0].t[j] + self.halves[1].t[j];
+            *x = rhs[self.sep[j]] + z1[j] + z2[j];
         }
         if k > 0 {
             let l = MatRef::from_column_major_slice(&self.schur, k, k);
@@ -565,6 +357,11 @@ pub(crate) mod tests {
     use crate::linear::cholesky::CholeskyFactor;
     use crate::linear::ordering::tests::grid;
     use crate::pattern::{StencilSet, build};
+    use faer::sparse::SymbolicSparseColMatRef;
+    use faer::sparse::linalg::SupernodalThreshold;
+    use faer::sparse::linalg::cholesky::{
+        CholeskySymbolicParams, SymmetricOrdering, factorize_symbolic_cholesky,
+    };
     use rand::{Rng, SeedableRng};
 
     fn triangles(n_vertices: usize, tris: &[usize], dim: usize) -> (Pattern, usize) {

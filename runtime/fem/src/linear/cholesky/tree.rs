@@ -18,15 +18,26 @@
 //! forest is split between the two halves by longest-processing-time
 //! greedy on subtree flops, until the heaviest subtree is below a quarter of
 //! the total. The S with the least estimated critical path,
-//! max(flops of a half's subtrees) + ½k³, is kept (k separator unknowns: its
-//! dense k³/3 block in each half, the k³/3 product of (3) on each half's
-//! thread and L_Σ on both threads, k³/6 each; ½k³ rather than k³ because
-//! these dense kernels run at a higher rate than the sparse supernodes).
+//! max(flops of a half's subtrees) + ⅕k³, is kept (k separator unknowns:
+//! the halves' subtree flops already include their updates of S, and the
+//! only extra work is the dense L_Σ, k³/3 in the Σ c² measure, weighted ⅗
+//! because a dense kernel runs at a higher rate than the sparse supernodes).
+//!
+//! The split is used (unless forced) only when that critical path is at
+//! most [`MAX_CRITICAL_RATIO`] of the plain factorisation's flops: the
+//! decision depends on the symbolic analysis alone, so it is the same run
+//! to run, and a split is only made when two threads have a margin to be
+//! faster than one (docs/benchmarks/threads.md).
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
 /// Weight of k³ in the estimated critical path (see the module docs).
-const DENSE_WEIGHT: f64 = 0.5;
+const DENSE_WEIGHT: f64 = 0.2;
+
+/// A split is made when its estimated critical path is at most this
+/// fraction of the plain factorisation's flops (an estimated speed-up of
+/// at least 1/0.75 ≈ 1.33 on two threads).
+pub(crate) const MAX_CRITICAL_RATIO: f64 = 0.75;
 
 /// At most this many supernodes move into S (each step is O(forest)).
 const MAX_STEPS: usize = 256;
@@ -79,8 +90,8 @@ fn two_bins(forest: &[usize], weight: &[f64]) -> (Vec<(usize, Part)>, [f64; 2]) 
 
 /// The part of each supernode in the split of the supernodal tree with the
 /// least estimated critical path, or `None` when one half would be empty or
-/// (unless `force`) no split is estimated faster than the plain
-/// factorisation.
+/// (unless `force`) its critical path is above [`MAX_CRITICAL_RATIO`] of the
+/// plain factorisation's flops.
 pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Option<Vec<Part>> {
     let n = s.n_supernodes();
     let parent = parents(s);
@@ -127,7 +138,7 @@ pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Optio
         k_cols += s.supernode_end()[heaviest] - s.supernode_begin()[heaviest];
     }
     let (critical, separator, assigned) = best?;
-    if critical >= total && !force {
+    if critical > MAX_CRITICAL_RATIO * total && !force {
         return None;
     }
     let mut parts = vec![Part::First; n];

@@ -1,0 +1,441 @@
+//! One half of the split factorisation ([`super::split`]): the supernodal
+//! LLᵀ of Bᵢ = A[Pᵢ∪S, Pᵢ∪S] *stopped before the separator*.
+//!
+//! With Pᵢ first (fill-reducing order) and S last, Bᵢ = LLᵀ has
+//!
+//! ```text
+//! L = ⎡ Lᵢ    0 ⎤,   Lᵢ Lᵢᵀ = Aᵢᵢ,   L_Si = ASᵢ Lᵢ⁻ᵀ                       (7)
+//!     ⎣ L_Si  · ⎦
+//! ```
+//!
+//! and the separator needs from this half only its update
+//!
+//! ```text
+//! Uᵢ = −L_Si L_Siᵀ   (k×k, lower triangle)                                  (8)
+//! ```
+//!
+//! (Σ = ASS + U₁ + U₂, eq. (3) of [`super::split`]). So only the supernodes
+//! of the Pᵢ columns are factorised, left-looking as in faer's supernodal
+//! LLᵀ (each supernode gathers A's entries, subtracts the updates of its
+//! descendants, factorises its diagonal block densely and solves its
+//! off-diagonal rows). Their rows in S make up L_Si, and Uᵢ is gathered from
+//! them as if S were one more supernode, without factorising it: the
+//! separator's k×k dense block is factorised once, in Σ, not in each half.
+//! The symbolic structure (supernodes, their row patterns, relaxation) is
+//! faer's analysis of Bᵢ; a supernode straddling Pᵢ and S is cut at |Pᵢ|
+//! (its S columns become rows of the cut supernode).
+//!
+//! **Solves.** Forward on [bᵢ; 0] through the Pᵢ supernodes leaves yᵢ =
+//! Lᵢ⁻¹bᵢ in the Pᵢ entries and −L_Si yᵢ in the S entries (the terms of
+//! r_S, (5)); backward on [yᵢ; x_S] gives xᵢ = Lᵢ⁻ᵀ(yᵢ − L_Siᵀ x_S), (6).
+//! Everything runs on the calling thread in a fixed order (the same bits
+//! run to run).
+
+use std::ops::Range;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::{LltError, cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::matmul::matmul;
+use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
+};
+use faer::{Accum, MatMut, MatRef, Par};
+
+use super::split::{oom, sub_pattern, zeros};
+use crate::error::FemError;
+use crate::pattern::Pattern;
+
+/// Descendant updates with at most this many multiply-adds are computed by
+/// plain loops straight into the target (faer's dense kernels cost more than
+/// they save on such small blocks).
+const SMALL_UPDATE: usize = 4096;
+
+/// A supernode of the Pᵢ columns: columns `start..end` (local), then the
+/// off-diagonal `rows` (ascending local indices ≥ `end`, into `row_idx`);
+/// its values are the (end − start + |rows|) × (end − start) column-major
+/// block at `val` in `l`.
+#[derive(Clone, Debug)]
+struct Node {
+    start: usize,
+    end: usize,
+    rows: Range<usize>,
+    val: usize,
+}
+
+/// Bᵢ = A[Pᵢ∪S, Pᵢ∪S]: structure, factor values of its Pᵢ columns and the
+/// separator update Uᵢ of (8).
+pub(super) struct Half {
+    /// Original unknown of each local one: Pᵢ in fill-reducing order, then S.
+    pub(super) unknowns: Vec<usize>,
+    /// |Pᵢ|.
+    pub(super) n_p: usize,
+    nodes: Vec<Node>,
+    row_idx: Vec<usize>,
+    /// Descendants of node s (the nodes with a row among its columns) are
+    /// `desc[desc_ptr[s]..desc_ptr[s + 1]]`; index `nodes.len()` is S.
+    desc_ptr: Vec<usize>,
+    desc: Vec<usize>,
+    /// Lower triangle of Bᵢ's Pᵢ columns: column j holds rows
+    /// `a_rows[a_ptr[j]..a_ptr[j + 1]]`, whose values are A's `a_slots`.
+    a_ptr: Vec<usize>,
+    a_rows: Vec<usize>,
+    a_slots: Vec<usize>,
+    /// Factor values of the Pᵢ supernodes.
+    l: Vec<f64>,
+    /// Uᵢ of (8), k×k column-major, lower triangle.
+    pub(super) update: Vec<f64>,
+    /// Row of a supernode's block holding each local row (scratch).
+    rel: Vec<usize>,
+    /// Product of a large descendant update (scratch).
+    temp: Vec<f64>,
+    mem: MemBuffer,
+    /// The solve vector: [yᵢ; −L_Si yᵢ] after [`Half::forward`], [xᵢ; x_S]
+    /// after [`Half::backward`].
+    pub(super) work: Vec<f64>,
+    /// Flops Σ c² over the Pᵢ columns (their updates of S included).
+    pub(super) flops: f64,
+}
+
+/// faer's supernodal analysis of Bᵢ (upper CSC `col_ptr`/`row_idx`, the
+/// local order kept).
+fn faer_analysis(
+    n: usize,
+    col_ptr: &[usize],
+    row_idx: &[usize],
+) -> Result<faer::sparse::linalg::cholesky::SymbolicCholesky<usize>, FemError> {
+    let a = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(a, faer::Side::Upper, SymmetricOrdering::Identity, params)
+        .map_err(|e| FemError::Symbolic(format!("{e:?}")))
+}
+
+/// The supernodes of the first `n_p` columns of `sn` (cut at `n_p`) and
+/// their row patterns.
+fn p_nodes(sn: &SymbolicSupernodalCholesky<usize>, n_p: usize) -> (Vec<Node>, Vec<usize>) {
+    let (mut nodes, mut rows, mut val) = (Vec::new(), Vec::new(), 0);
+    for s in 0..sn.n_supernodes() {
+        let (start, e) = (sn.supernode_begin()[s], sn.supernode_end()[s]);
+        if start >= n_p {
+            break;
+        }
+        let end = e.min(n_p);
+        let r0 = rows.len();
+        rows.extend(end..e);
+        rows.extend_from_slice(sn.supernode(s).pattern());
+        let (w, m) = (end - start, end - start + rows.len() - r0);
+        nodes.push(Node {
+            start,
+            end,
+            rows: r0..rows.len(),
+            val,
+        });
+        val += m * w;
+    }
+    (nodes, rows)
+}
+
+/// Descendant lists (CSR by target; target `nodes.len()` is S).
+fn descendants(nodes: &[Node], rows: &[usize], n_p: usize) -> (Vec<usize>, Vec<usize>) {
+    let mut owner = vec![0usize; n_p];
+    for (s, node) in nodes.iter().enumerate() {
+        owner[node.start..node.end].fill(s);
+    }
+    let owner = &owner;
+    let targets = |d: usize| {
+        let mut last = usize::MAX;
+        rows[nodes[d].rows.clone()].iter().filter_map(move |&r| {
+            let t = if r < n_p { owner[r] } else { nodes.len() };
+            (t != last).then(|| {
+                last = t;
+                t
+            })
+        })
+    };
+    let mut ptr = vec![0usize; nodes.len() + 3];
+    for d in 0..nodes.len() {
+        targets(d).for_each(|t| ptr[t + 2] += 1);
+    }
+    for t in 2..ptr.len() {
+        ptr[t] += ptr[t - 1];
+    }
+    let mut desc = vec![0usize; ptr[nodes.len() + 2]];
+    for d in 0..nodes.len() {
+        for t in targets(d) {
+            desc[ptr[t + 1]] = d;
+            ptr[t + 1] += 1;
+        }
+    }
+    ptr.pop();
+    (ptr, desc)
+}
+
+/// Lower-triangular CSC of the first `n_p` columns of the upper CSC
+/// (`col_ptr`, `row_idx`, A-slots `gather`): pointers, rows, slots.
+fn lower_p_columns(
+    n_p: usize,
+    col_ptr: &[usize],
+    row_idx: &[usize],
+    gather: &[usize],
+) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+    let mut ptr = vec![0usize; n_p + 1];
+    row_idx
+        .iter()
+        .filter(|&&r| r < n_p)
+        .for_each(|&r| ptr[r + 1] += 1);
+    for j in 0..n_p {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut next = ptr.clone();
+    let (mut rows, mut slots) = (vec![0; ptr[n_p]], vec![0; ptr[n_p]]);
+    for c in 0..col_ptr.len() - 1 {
+        for e in col_ptr[c]..col_ptr[c + 1] {
+            let r = row_idx[e];
+            if r < n_p {
+                (rows[next[r]], slots[next[r]]) = (c, gather[e]);
+                next[r] += 1;
+            }
+        }
+    }
+    (ptr, rows, slots)
+}
+
+impl Half {
+    /// Structure of Bᵢ whose unknowns are `unknowns` (the first `n_p` are
+    /// Pᵢ, the rest S, each in elimination order) and all its storage.
+    pub(super) fn analyse(
+        pattern: &Pattern,
+        unknowns: Vec<usize>,
+        n_p: usize,
+    ) -> Result<Self, FemError> {
+        let n = unknowns.len();
+        let k = n - n_p;
+        let (col_ptr, row_idx, gather) = sub_pattern(pattern, &unknowns);
+        let symbolic = faer_analysis(n, &col_ptr, &row_idx)?;
+        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+            unreachable!("the halves are analysed with FORCE_SUPERNODAL")
+        };
+        let (nodes, rows) = p_nodes(sn, n_p);
+        drop(symbolic);
+        let (desc_ptr, desc) = descendants(&nodes, &rows, n_p);
+        let (a_ptr, a_rows, a_slots) = lower_p_columns(n_p, &col_ptr, &row_idx, &gather);
+        let (mut len, mut max_w, mut flops) = (0, 0, 0.0);
+        for node in &nodes {
+            let (w, r) = (node.end - node.start, node.rows.len());
+            len = node.val + (w + r) * w;
+            max_w = max_w.max(w);
+            flops += (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>();
+        }
+        let req = cholesky_in_place_scratch::<f64>(max_w, Par::Seq, Default::default());
+        Ok(Half {
+            unknowns,
+            n_p,
+            nodes,
+            row_idx: rows,
+            desc_ptr,
+            desc,
+            a_ptr,
+            a_rows,
+            a_slots,
+            l: zeros(len, "a split factor")?,
+            update: zeros(k * k, "the separator block")?,
+            rel: vec![0; n],
+            temp: Vec::new(),
+            mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
+            work: zeros(n, "the solve")?,
+            flops,
+        })
+    }
+
+    /// Separator size k.
+    pub(super) fn k(&self) -> usize {
+        self.unknowns.len() - self.n_p
+    }
+
+    /// Stored factor values (the Pᵢ supernodes).
+    pub(super) fn len_val(&self) -> usize {
+        self.l.len()
+    }
+
+    /// Numeric LLᵀ of the Pᵢ columns of Bᵢ (7) and Uᵢ (8), on this thread;
+    /// on a non-positive pivot, its local index.
+    pub(super) fn factorize(&mut self, values: &[f64]) -> Result<(), usize> {
+        for s in 0..self.nodes.len() {
+            self.factor_node(s, values)?;
+        }
+        let (k, n_p, n) = (self.k(), self.n_p, self.unknowns.len());
+        let mut update = std::mem::take(&mut self.update);
+        let mut temp = std::mem::take(&mut self.temp);
+        update.fill(0.0);
+        let s = self.nodes.len();
+        for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
+            self.update_from(&mut temp, d, &self.l, &mut update, k, n_p..n);
+        }
+        (self.update, self.temp) = (update, temp);
+        Ok(())
+    }
+
+    /// Node `s`: gather A, subtract its descendants' updates, factorise.
+    fn factor_node(&mut self, s: usize, values: &[f64]) -> Result<(), usize> {
+        let Node {
+            start,
+            end,
+            rows,
+            val,
+        } = self.nodes[s].clone();
+        let w = end - start;
+        let m = w + rows.len();
+        for (i, &r) in self.row_idx[rows].iter().enumerate() {
+            self.rel[r] = w + i;
+        }
+        let mut l = std::mem::take(&mut self.l);
+        let mut temp = std::mem::take(&mut self.temp);
+        let (head, tail) = l.split_at_mut(val);
+        let ls = &mut tail[..m * w];
+        ls.fill(0.0);
+        for j in start..end {
+            let col = &mut ls[(j - start) * m..][..m];
+            for e in self.a_ptr[j]..self.a_ptr[j + 1] {
+                let i = self.a_rows[e];
+                let li = if i < end { i - start } else { self.rel[i] };
+                col[li] += values[self.a_slots[e]];
+            }
+        }
+        for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
+            self.update_from(&mut temp, d, head, ls, m, start..end);
+        }
+        let result = dense_node(ls, m, w, MemStack::new(&mut self.mem));
+        (self.l, self.temp) = (l, temp);
+        result.map_err(|index| start + index)
+    }
+
+    /// Subtract node `d`'s outer product L_d[rows ≥ cols.start] ·
+    /// L_d[rows in cols]ᵀ from the m-row `target` whose columns are `cols`
+    /// (rows at or beyond `cols.end` through `rel`); `l` holds node `d`.
+    fn update_from(
+        &self,
+        temp: &mut Vec<f64>,
+        d: usize,
+        l: &[f64],
+        target: &mut [f64],
+        m: usize,
+        cols: Range<usize>,
+    ) {
+        let node = &self.nodes[d];
+        let wd = node.end - node.start;
+        let pd = &self.row_idx[node.rows.clone()];
+        let md = wd + pd.len();
+        let p0 = pd.partition_point(|&r| r < cols.start);
+        let nm = pd[p0..].partition_point(|&r| r < cols.end);
+        let nb = pd.len() - p0;
+        let ld = &l[node.val..][..md * wd];
+        let at = |r: usize| {
+            let row = pd[p0 + r];
+            if row < cols.end {
+                row - cols.start
+            } else {
+                self.rel[row]
+            }
+        };
+        if nb * nm * wd <= SMALL_UPDATE {
+            for c in 0..nm {
+                let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
+                for r in c..nb {
+                    let dot: f64 = (0..wd)
+                        .map(|q| ld[q * md + wd + p0 + r] * ld[q * md + wd + p0 + c])
+                        .sum();
+                    col[at(r)] -= dot;
+                }
+            }
+            return;
+        }
+        if temp.len() < nb * nm {
+            temp.resize(nb * nm, 0.0);
+        }
+        let ldm = MatRef::from_column_major_slice(ld, md, wd);
+        let below = ldm.subrows(wd + p0, nb);
+        let mid = ldm.subrows(wd + p0, nm);
+        let t = MatMut::from_column_major_slice_mut(&mut temp[..nb * nm], nb, nm);
+        matmul(t, Accum::Replace, below, mid.transpose(), 1.0, Par::Seq);
+        for c in 0..nm {
+            let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
+            for r in c..nb {
+                col[at(r)] -= temp[c * nb + r];
+            }
+        }
+    }
+
+    /// Forward solve (see the module docs): `work` = [yᵢ; −L_Si yᵢ].
+    pub(super) fn forward(&mut self, b: &[f64]) {
+        let n_p = self.n_p;
+        let work = &mut self.work;
+        for (w, &u) in work.iter_mut().zip(&self.unknowns[..n_p]) {
+            *w = b[u];
+        }
+        work[n_p..].fill(0.0);
+        for node in &self.nodes {
+            let (start, w) = (node.start, node.end - node.start);
+            let rows = &self.row_idx[node.rows.clone()];
+            let m = w + rows.len();
+            let ls = &self.l[node.val..][..m * w];
+            for c in 0..w {
+                let col = &ls[c * m..][..m];
+                let xc = work[start + c] / col[c];
+                work[start + c] = xc;
+                for r in c + 1..w {
+                    work[start + r] -= col[r] * xc;
+                }
+                for (&row, l) in rows.iter().zip(&col[w..]) {
+                    work[row] -= l * xc;
+                }
+            }
+        }
+    }
+
+    /// Backward solve (6): `work` = [xᵢ; x_S] from [yᵢ; ·] and x_S.
+    pub(super) fn backward(&mut self, x_s: &[f64]) {
+        let work = &mut self.work;
+        work[self.n_p..].copy_from_slice(x_s);
+        for node in self.nodes.iter().rev() {
+            let (start, w) = (node.start, node.end - node.start);
+            let rows = &self.row_idx[node.rows.clone()];
+            let m = w + rows.len();
+            let ls = &self.l[node.val..][..m * w];
+            for c in (0..w).rev() {
+                let col = &ls[c * m..][..m];
+                let mut s = work[start + c];
+                for (&row, l) in rows.iter().zip(&col[w..]) {
+                    s -= l * work[row];
+                }
+                for r in c + 1..w {
+                    s -= col[r] * work[start + r];
+                }
+                work[start + c] = s / col[c];
+            }
+        }
+    }
+}
+
+/// Dense part of a supernode (m×w column-major `ls`): Cholesky of the w×w
+/// diagonal block, then the rows below ← rows below · L⁻ᵀ. On a
+/// non-positive pivot, its index in the block.
+fn dense_node(ls: &mut [f64], m: usize, w: usize, stack: &mut MemStack) -> Result<(), usize> {
+    let node = MatMut::from_column_major_slice_mut(ls, m, w);
+    let (mut top, mut bot) = node.split_at_row_mut(w);
+    cholesky_in_place(
+        top.as_mut(),
+        Default::default(),
+        Par::Seq,
+        stack,
+        Default::default(),
+    )
+    .map_err(|LltError::NonPositivePivot { index }| index)?;
+    solve_lower_triangular_in_place(top.as_ref(), bot.as_mut().transpose_mut(), Par::Seq);
+    Ok(())
+}
