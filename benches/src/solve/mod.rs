@@ -36,6 +36,7 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
+use ecc_fem::elastic::Projection;
 use ecc_fem::{
     Elastic, Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term, Tet, Tri,
 };
@@ -152,6 +153,76 @@ fn err(e: impl std::fmt::Display) -> SolveError {
     SolveError(e.to_string())
 }
 
+/// Departures from the solver's defaults for the iteration study of issue
+/// #11 (`examples/iterations.rs`): the analytic projection and the
+/// line-search rule. `Variant::default()` is what the report runs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Variant {
+    /// Projection of the analytic element term (the report's methods use a
+    /// bare `Elastic`, i.e. `FSpace`; the library default is `Auto`).
+    pub projection: Projection,
+    /// Eigenvalue filter instead of the method's (e.g. TinyAD's
+    /// `ClampEps(1e-9)` on the numeric 6×6 projection).
+    pub filter: Option<Filter>,
+    /// `NewtonParams::barrier_safety` (∞: every search starts at α = 1).
+    pub barrier_safety: f64,
+    /// `NewtonParams::backtrack` (β).
+    pub backtrack: f64,
+    /// `NewtonParams::armijo_c1`.
+    pub armijo_c1: f64,
+    /// Stopping tolerance on ‖∇E‖∞ (the report runs to 1e-8).
+    pub tol_abs: f64,
+    /// Keep the Tutte start on the unit circle instead of scaling it to the
+    /// rest area (TinyAD-Examples' `parametrization_*.cc`).
+    pub unit_disk_start: bool,
+    /// TinyAD-Examples' units: the mesh at its own scale (no unit-area
+    /// normalisation) and the summed objective Σ A (‖J‖² + ‖J⁻¹‖²) = 2 Σ |q| ψ
+    /// (energy_scale 2) instead of the area-weighted mean.
+    pub raw_units: bool,
+}
+
+impl Default for Variant {
+    fn default() -> Self {
+        let p = NewtonParams::default();
+        Variant {
+            projection: Projection::FSpace,
+            filter: None,
+            barrier_safety: p.barrier_safety,
+            backtrack: p.backtrack,
+            armijo_c1: p.armijo_c1,
+            tol_abs: THRESHOLDS[3],
+            unit_disk_start: false,
+            raw_units: false,
+        }
+    }
+}
+
+impl Variant {
+    /// TinyAD's `line_search` defaults (`include/TinyAD/Utils/LineSearch.hh`):
+    /// s_max = 1, shrink 0.8, Armijo 1e-4, no injectivity bound (the barrier's
+    /// +∞ rejects steps past it), and its `project_positive_definite` clamp
+    /// to ε = 1e-9 (`default_hessian_projection_eps`).
+    pub fn tinyad() -> Self {
+        Variant {
+            filter: Some(Filter::ClampEps(1e-9)),
+            barrier_safety: f64::INFINITY,
+            backtrack: 0.8,
+            armijo_c1: 1e-4,
+            ..Default::default()
+        }
+    }
+
+    fn apply(&self, p: &mut NewtonParams) {
+        if let Some(f) = self.filter {
+            p.filter = f;
+        }
+        p.barrier_safety = self.barrier_safety;
+        p.backtrack = self.backtrack;
+        p.armijo_c1 = self.armijo_c1;
+        p.tol_abs = self.tol_abs;
+    }
+}
+
 fn params(method: SolveMethod, limits: &SolveLimits, scale: f64) -> NewtonParams {
     let mut p = NewtonParams {
         tol_abs: THRESHOLDS[3],
@@ -259,24 +330,38 @@ pub fn parameterization(
     method: SolveMethod,
     limits: &SolveLimits,
 ) -> Result<Trace, SolveError> {
+    parameterization_with(problem, mesh, energy, method, limits, &Variant::default())
+}
+
+/// [`parameterization`] with the solver's defaults changed by `variant`.
+pub fn parameterization_with(
+    problem: &str,
+    mesh: &TriMesh,
+    energy: Arc<dyn Energy<2>>,
+    method: SolveMethod,
+    limits: &SolveLimits,
+    variant: &Variant,
+) -> Result<Trace, SolveError> {
     let e0 =
         Elastic::<dyn Energy<2>, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)
             .map_err(err)?;
-    let s = 1.0 / e0.total_measure().sqrt();
+    let s = if variant.raw_units {
+        1.0
+    } else {
+        1.0 / e0.total_measure().sqrt()
+    };
     let scaled: Vec<[f64; 3]> = mesh.positions.iter().map(|p| p.map(|c| c * s)).collect();
-    let elastic =
-        Elastic::<dyn Energy<2>, Tri>::surface(energy, &scaled, &mesh.triangles).map_err(err)?;
+    let elastic = Elastic::<dyn Energy<2>, Tri>::surface(energy, &scaled, &mesh.triangles)
+        .map_err(err)?
+        .with_projection(variant.projection);
     let area = elastic.total_measure();
     let rest = elastic.rest().to_vec();
     let name = elastic.energy().name().to_string();
     let term = wrap(method, Box::new(elastic), &name, rest)?;
-    let solver = NewtonSolver::new(
-        mesh.positions.len(),
-        vec![term],
-        &[],
-        params(method, limits, 1.0 / area),
-    )
-    .map_err(err)?;
+    let scale = if variant.raw_units { 2.0 } else { 1.0 / area };
+    let mut p = params(method, limits, scale);
+    variant.apply(&mut p);
+    let solver = NewtonSolver::new(mesh.positions.len(), vec![term], &[], p).map_err(err)?;
     let mut uv = tutte_embedding(mesh, TutteWeights::Uniform).map_err(err)?;
     let uv_area: f64 = mesh
         .triangles
@@ -291,7 +376,11 @@ pub fn parameterization(
             "{problem}: Tutte start has area {uv_area}"
         )));
     }
-    let k = (area / uv_area).sqrt();
+    let k = if variant.unit_disk_start {
+        1.0
+    } else {
+        (area / uv_area).sqrt()
+    };
     uv.iter_mut().for_each(|p| *p = [p[0] * k, p[1] * k]);
     record(
         solver,

@@ -9,7 +9,7 @@ use std::time::Instant;
 use ecc_runtime::filter::Filter;
 use rayon::prelude::*;
 
-use super::line_search::{Accepted, Armijo, backtrack};
+use super::line_search::{Accepted, Armijo, backtrack, initial_step};
 use super::params::{FilterPolicy, NewtonParams};
 use super::record::{IterationRecord, NewtonStatus, TimeSplit};
 use super::solver::NewtonSolver;
@@ -305,11 +305,7 @@ impl<const D: usize> NewtonSolver<D> {
             .dofs()
             .scatter(&self.d, self.dx.as_flattened_mut());
         let alpha_max = self.assembler.max_step(&self.terms, x, &self.dx);
-        let alpha0 = if alpha_max.is_finite() {
-            (s.p.barrier_safety * alpha_max).min(1.0)
-        } else {
-            1.0
-        };
+        let alpha0 = initial_step(alpha_max, s.p.barrier_safety);
         let scale = s.p.energy_scale;
         let (terms, assembler, xt, dx) = (&self.terms, &mut self.assembler, &mut self.xt, &self.dx);
         let ls = backtrack(energy, slope, alpha0, s.armijo, |alpha| {

@@ -30,6 +30,18 @@ pub(crate) struct Armijo {
     pub min_step: f64,
 }
 
+/// The first trial step α₀ = min(1, `safety`·α_max) for the inversion-free
+/// bound α_max (+∞ when nothing bounds the step); a non-finite `safety`
+/// gives α₀ = 1 (TinyAD's `line_search`: the barrier's +∞ rejects the steps
+/// past α_max during backtracking).
+pub(crate) fn initial_step(alpha_max: f64, safety: f64) -> f64 {
+    if alpha_max.is_finite() && safety.is_finite() {
+        (safety * alpha_max).min(1.0)
+    } else {
+        1.0
+    }
+}
+
 /// Run the search. `energy_at(α)` evaluates E(x + α d). `slope` = ∇Eᵀd < 0.
 /// On failure returns the last α tried.
 pub(crate) fn backtrack(
@@ -76,6 +88,22 @@ mod tests {
         beta: 0.5,
         min_step: 1e-12,
     };
+
+    #[test]
+    fn initial_step_is_the_safe_fraction_of_the_bound_or_one() {
+        assert_eq!(initial_step(0.5, 0.9), 0.45);
+        assert_eq!(initial_step(2.0, 0.9), 1.0);
+        assert_eq!(initial_step(f64::INFINITY, 0.9), 1.0);
+        // TinyAD's rule: always 1, even with a bound below 1 (or at 0)
+        assert_eq!(initial_step(0.5, f64::INFINITY), 1.0);
+        assert_eq!(initial_step(0.0, f64::INFINITY), 1.0);
+        // with it, the backtracking lands below the barrier at 0.8^k
+        let f = |a: f64| if a >= 0.5 { f64::INFINITY } else { 1.0 - a };
+        let c = Armijo { beta: 0.8, ..C };
+        let r = backtrack(1.0, -1.0, initial_step(0.5, f64::INFINITY), c, f).unwrap();
+        assert_eq!(r.evals, 5);
+        assert!((r.alpha - 0.8f64.powi(4)).abs() < 1e-15);
+    }
 
     #[test]
     fn quadratic_takes_the_full_step() {

@@ -4,6 +4,7 @@ use ecc_runtime::filter::Filter;
 
 use serde::{Deserialize, Serialize};
 
+use crate::linear::cholesky::CholeskyParams;
 use crate::linear::{AutoLimits, FactorReuse, LinearSolver};
 
 /// Per-iteration choice of the eigenvalue filter.
@@ -75,6 +76,9 @@ pub struct NewtonParams {
     pub linear_solver: LinearSolver,
     /// When `Auto` switches to PCG.
     pub auto_limits: AutoLimits,
+    /// Fill-reducing ordering and thread policy of the Cholesky factor
+    /// (`linear::cholesky::ThreadPolicy`; default: block AMD, sequential).
+    pub cholesky: CholeskyParams,
     /// With Cholesky: when a later step solves by CG preconditioned by the
     /// last (stale) factor instead of factorising again
     /// (default [`FactorReuse::OFF`], factorise every step, by measurement;
@@ -89,7 +93,10 @@ pub struct NewtonParams {
     pub backtrack: f64,
     /// Give up the line search below this step length.
     pub min_step: f64,
-    /// Start barrier line searches at `barrier_safety`·α_max (inversion-free bound).
+    /// Start barrier line searches at min(1, `barrier_safety`·α_max)
+    /// (α_max: the inversion-free bound). `f64::INFINITY` starts every search
+    /// at 1 and lets the barrier's +∞ reject steps past α_max (TinyAD's
+    /// `line_search`; see `docs/benchmarks/projection.md` for the comparison).
     pub barrier_safety: f64,
     /// Relative diagonal shift used when nothing is fixed (null space), see
     /// [`crate::linear`]. Systems with fixed DOFs start unshifted.
@@ -116,6 +123,7 @@ impl Default for NewtonParams {
             adaptive_threshold: 0.01,
             linear_solver: LinearSolver::Auto,
             auto_limits: AutoLimits::default(),
+            cholesky: CholeskyParams::default(),
             factor_reuse: FactorReuse::default(),
             energy_scale: 1.0,
             armijo_c1: 1e-4,
