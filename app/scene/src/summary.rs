@@ -58,6 +58,19 @@ pub struct LinearWork {
     pub cg_iterations: usize,
     /// Newton steps solved with CG preconditioned by a stale factor.
     pub reused_factor_steps: usize,
+    /// The Cholesky factor's thread policy (`[solver] threads`); run total
+    /// only, absent without a Cholesky factor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub threads: Option<ecc_fem::linear::cholesky::ThreadPolicy>,
+    /// The Cholesky factor's fill-reducing ordering (`[solver] ordering`);
+    /// run total only, absent without a Cholesky factor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ordering: Option<ecc_fem::linear::ordering::FillOrdering>,
+    /// Whether the policy split the factorisation over two threads (`split`
+    /// on a two-thread pool, when the symbolic analysis estimates it pays);
+    /// run total only, absent without a Cholesky factor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub split: Option<bool>,
 }
 
 impl LinearWork {
@@ -69,6 +82,7 @@ impl LinearWork {
             numeric_factorizations: r.records.iter().map(|s| s.factorizations).sum(),
             cg_iterations: r.records.iter().map(|s| s.cg_iterations).sum(),
             reused_factor_steps: r.records.iter().filter(|s| s.reused_factor).count(),
+            ..LinearWork::default()
         }
     }
 
@@ -85,6 +99,17 @@ impl LinearWork {
             w.reused_factor_steps += s.linear.reused_factor_steps;
         }
         w
+    }
+
+    /// With the thread policy, ordering and split of `system`'s Cholesky
+    /// factor, if it has one.
+    pub fn with_factor(mut self, system: &ecc_fem::linear::LinearSystem) -> Self {
+        if let Some(f) = system.cholesky() {
+            self.threads = Some(f.params().threads);
+            self.ordering = Some(f.params().ordering);
+            self.split = Some(f.split().is_some());
+        }
+        self
     }
 }
 

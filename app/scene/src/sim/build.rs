@@ -72,6 +72,10 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
             ecc_fem::linear::FactorReuse::OFF
         },
         energy_scale: scale,
+        cholesky: ecc_fem::linear::cholesky::CholeskyParams {
+            ordering: s.ordering.unwrap_or_default(),
+            threads: s.threads.unwrap_or_default(),
+        },
         ..NewtonParams::default()
     }
 }

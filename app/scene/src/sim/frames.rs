@@ -201,7 +201,8 @@ fn summarize<const D: usize>(
         linear: LinearWork::of_run(
             &engine.journal.log,
             engine.solver.linear_system().symbolic_analyses(),
-        ),
+        )
+        .with_factor(engine.solver.linear_system()),
         converged_frames: stats.iter().skip(1).filter(|s| s.converged).count(),
         status: RunStatus::of(
             engine.journal.stopped.is_some(),

@@ -232,7 +232,8 @@ pub(crate) fn run_parameterization(
         counters: Counters::default().values(),
         handles: Vec::new(),
         newton_iterations: r.iterations,
-        linear: LinearWork::of_run(std::slice::from_ref(&log), r.symbolic_analyses),
+        linear: LinearWork::of_run(std::slice::from_ref(&log), r.symbolic_analyses)
+            .with_factor(problem.solver.linear_system()),
         converged_frames: usize::from(r.converged()),
         frames: vec![f0, f1],
         solves: vec![log],

@@ -412,6 +412,17 @@ pub struct SolverSpec {
     /// `f-space`, `element` or `hybrid`.
     #[serde(default)]
     pub projection: ProjectionKind,
+    /// Thread policy of the Cholesky factorisation: `sequential` (default),
+    /// `split` (two halves of a separator on two threads when the symbolic
+    /// analysis estimates it pays), `parallel` or `auto`
+    /// (`ecc_fem::linear::cholesky::ThreadPolicy`; docs/benchmarks/threads.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub threads: Option<ecc_fem::linear::cholesky::ThreadPolicy>,
+    /// Fill-reducing ordering of the Cholesky factor: `block-amd` (default),
+    /// `amd` or `metis` (with the `metis` feature)
+    /// (`ecc_fem::linear::ordering::FillOrdering`; docs/benchmarks/ordering.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ordering: Option<ecc_fem::linear::ordering::FillOrdering>,
     /// Quasi-static handle moves are split into this many solves per frame
     /// (default 1; halved further automatically while a move would invert
     /// an element of a barrier energy).

@@ -77,8 +77,13 @@ impl<const D: usize> NewtonSolver<D> {
         let nv = dofs.n_vertices();
         let assembler = Assembler::new(&terms, dofs)?;
         let pattern = assembler.pattern();
-        let linear =
-            LinearSystem::for_dimension(pattern, params.linear_solver, params.auto_limits, D)?;
+        let linear = LinearSystem::with_cholesky_params(
+            pattern,
+            params.linear_solver,
+            params.auto_limits,
+            D,
+            params.cholesky,
+        )?;
         let n = pattern.n();
         let nnz = pattern.nnz();
         Ok(NewtonSolver {
@@ -101,7 +106,9 @@ impl<const D: usize> NewtonSolver<D> {
     pub fn set_linear_solver(&mut self, choice: LinearSolver) -> Result<(), FemError> {
         self.params.linear_solver = choice;
         let limits = self.params.auto_limits;
-        let new = LinearSystem::for_dimension(self.assembler.pattern(), choice, limits, D)?;
+        let pattern = self.assembler.pattern();
+        let new =
+            LinearSystem::with_cholesky_params(pattern, choice, limits, D, self.params.cholesky)?;
         let old = std::mem::replace(&mut self.linear, new);
         self.earlier.0 += old.symbolic_analyses();
         self.earlier.1 += old.cholesky().map_or(0, |c| c.numeric_factorizations());

@@ -1,0 +1,112 @@
+//! `[solver] threads` and `[solver] ordering`: the Cholesky factor's thread
+//! policy (`ecc_fem::linear::cholesky::ThreadPolicy`) and fill-reducing
+//! ordering (`ecc_fem::linear::ordering::FillOrdering`), by their stable
+//! names, reported back under `linear` in the summary.
+
+use ecc_fem::linear::cholesky::{CholeskyParams, ThreadPolicy};
+use ecc_fem::linear::ordering::FillOrdering;
+use ecc_scene::sim::build::newton_params;
+use ecc_scene::{RunOptions, RuntimeEnergies, SceneFile, Silent, run_scene};
+
+const MESH: &str =
+    "name = \"bar\"\n[mesh]\nfile = \"data:bar-2523.mesh\"\n[energy]\nname = \"arap\"\n";
+
+fn params_of(solver: &str) -> Result<CholeskyParams, String> {
+    let text = format!("{MESH}[solver]\n{solver}\n");
+    let f = SceneFile::parse(&text, "scene.toml", ".").map_err(|e| e.to_string())?;
+    Ok(newton_params(&f.scene.solver, 1.0).cholesky)
+}
+
+#[test]
+fn the_defaults_are_the_library_defaults() {
+    assert_eq!(params_of("").unwrap(), CholeskyParams::default());
+}
+
+#[test]
+fn every_policy_and_ordering_is_selected_by_its_name() {
+    for p in ThreadPolicy::ALL {
+        let got = params_of(&format!("threads = \"{}\"", p.name())).unwrap();
+        assert_eq!(got.threads, p);
+        assert_eq!(got.ordering, FillOrdering::default());
+    }
+    for o in FillOrdering::ALL {
+        let got = params_of(&format!("ordering = \"{}\"", o.name())).unwrap();
+        assert_eq!(got.ordering, o);
+        assert_eq!(got.threads, ThreadPolicy::default());
+    }
+    let both = params_of("threads = \"split\"\nordering = \"amd\"").unwrap();
+    assert_eq!(
+        both,
+        CholeskyParams {
+            ordering: FillOrdering::Amd,
+            threads: ThreadPolicy::Split
+        }
+    );
+}
+
+#[test]
+fn a_bad_value_is_a_located_error() {
+    for bad in ["threads = \"2\"", "threads = 2", "ordering = \"nd\""] {
+        let err = params_of(bad).unwrap_err();
+        // the key's line: 5 lines of MESH, then `[solver]`
+        assert!(err.contains("scene.toml:7:"), "{bad}: {err}");
+    }
+}
+
+#[test]
+fn the_keys_round_trip_and_are_omitted_when_unset() {
+    let text = format!("{MESH}[solver]\nthreads = \"split\"\nordering = \"block-amd\"\n");
+    let f = SceneFile::parse(&text, "scene.toml", ".").unwrap();
+    let back = toml::to_string(&f.scene).unwrap();
+    assert!(back.contains("threads = \"split\""), "{back}");
+    assert!(back.contains("ordering = \"block-amd\""), "{back}");
+    let back = toml::to_string(&SceneFile::parse(MESH, "scene.toml", ".").unwrap().scene).unwrap();
+    assert!(
+        !back.contains("threads") && !back.contains("ordering"),
+        "{back}"
+    );
+}
+
+/// A small disk parameterisation with `solver` keys, in a pool of `threads`.
+fn linear_json(solver: &str, threads: usize) -> serde_json::Value {
+    let text = format!(
+        "[mesh]\ngenerate = \"disk\"\nrings = 6\n[energy]\nname = \"sd\"\n\
+         [effects.parameterize]\ntutte = \"uniform\"\n[solver]\ntol = 1e-8\n{solver}\n"
+    );
+    let f = SceneFile::parse(&text, "scene.toml", ".").unwrap();
+    let opts = RunOptions {
+        dry_run: true,
+        ..Default::default()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let s = pool
+        .install(|| run_scene(&f, &RuntimeEnergies, &opts, &mut Silent))
+        .unwrap()
+        .summary;
+    assert!(s.frames[1].converged, "{solver}");
+    serde_json::to_value(&s).unwrap()["linear"].clone()
+}
+
+#[test]
+fn the_summary_reports_the_policy_ordering_and_split() {
+    let w = linear_json(
+        "linear = \"cholesky\"\nthreads = \"split\"\nordering = \"amd\"",
+        2,
+    );
+    assert_eq!(w["threads"], "split");
+    assert_eq!(w["ordering"], "amd");
+    // a 6-ring disk is far below the size where a split pays
+    assert_eq!(w["split"], false);
+    let w = linear_json("linear = \"cholesky\"", 1);
+    assert_eq!(w["threads"], ThreadPolicy::default().name());
+    assert_eq!(w["ordering"], FillOrdering::default().name());
+    // PCG has no factor: no keys
+    let w = linear_json("linear = \"pcg\"", 1);
+    assert!(
+        w.get("threads").is_none() && w.get("split").is_none(),
+        "{w}"
+    );
+}
