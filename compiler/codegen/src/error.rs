@@ -39,14 +39,6 @@ pub enum CodegenError {
         /// The parser's message.
         message: String,
     },
-    /// The energy has a fibre part (`fiber a`), which this back end cannot
-    /// emit yet (`--emit cpp`).
-    FibreUnsupported {
-        /// The back end (`"--emit cpp"`).
-        backend: &'static str,
-        /// The 1-based line of the `fiber` statement.
-        line: usize,
-    },
 }
 
 impl fmt::Display for CodegenError {
@@ -75,10 +67,6 @@ impl fmt::Display for CodegenError {
             CodegenError::Format { message } => {
                 write!(f, "generated code does not parse: {message}")
             }
-            CodegenError::FibreUnsupported { backend, line } => write!(
-                f,
-                "fibre energies are not supported by {backend} yet (the `fiber` statement on line {line}); use --emit rs, the `energy!` macro, build.rs or the interpreter (ecc eval, scenes)"
-            ),
         }
     }
 }
