@@ -2,7 +2,8 @@
 //! strict flags (g++, and clang++ when installed) and agrees with the Rust
 //! runtime (`ecc_runtime::fibre::{fibre_f, fibre_element_eval}` on the
 //! generated library energies of ecc-energies, and on the interpreter for
-//! the test energies below) to 10⁻¹⁰ relative (per block) on: ψ, I4, I5,
+//! the test energies below) to 10⁻¹⁰ relative (per block; a filtered Hessian
+//! relative to the raw one it filters, see [`compare`]) on: ψ, I4, I5,
 //! vec(∂ψ/∂F), the d²×d² Hessian under the four filters, the element energy,
 //! gradient and Hessians, ψ alone, and which eigensystem was used (closed form
 //! ⇔ closed form). Library: fibre_arap, fibre_stvk, fibre_fung; test energies:
