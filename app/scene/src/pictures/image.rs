@@ -215,6 +215,22 @@ impl Picture {
         self.polyline(&[a, b], width, c, 1.0, None);
     }
 
+    /// A line segment with square caps (a stroke that ends as far beyond
+    /// its end points as it is wide on each side).
+    pub fn bar(&mut self, a: (f64, f64), b: (f64, f64), width: f64, c: Rgb) {
+        let mut pb = PathBuilder::new();
+        pb.move_to(a.0 as f32, a.1 as f32);
+        pb.line_to(b.0 as f32, b.1 as f32);
+        let Some(path) = pb.finish() else { return };
+        let s = Stroke {
+            width: width as f32,
+            line_cap: LineCap::Square,
+            ..Stroke::default()
+        };
+        self.pix
+            .stroke_path(&path, &paint(c, 1.0), &s, Transform::identity(), None);
+    }
+
     /// A filled disc.
     pub fn disc(&mut self, cx: f64, cy: f64, r: f64, c: Rgb) {
         if let Some(path) = PathBuilder::from_circle(cx as f32, cy as f32, r as f32) {

@@ -11,7 +11,8 @@
 //!   With fibres ([`volume_fibres`]), each skin element's deformed fibre
 //!   direction F a is drawn through its centroid, coloured by √I5.
 //! * [`planar`]: planar triangle meshes coloured by conformal distortion
-//!   σ₁/σ₂, with the rest outline and handles.
+//!   σ₁/σ₂, with the rest outline and handles; with fibres
+//!   ([`planar_fibres`]) each triangle's F a is drawn the same way.
 //! * [`parameterization`]: the surface with a checkerboard mapped through
 //!   the uv map (a good map keeps squares square), next to the uv layout
 //!   coloured by isometric distortion max(σ₁, 1/σ₂).
@@ -35,7 +36,7 @@ pub use chart::{Chart, Legend, PALETTE, Series};
 pub use fibres::Fibres;
 pub use image::{Orient, Picture, Rgb, hex, mix};
 pub use param::parameterization;
-pub use planar::planar;
+pub use planar::{planar, planar_fibres};
 pub use plot::convergence;
 pub use volume::{volume, volume_fibres};
 

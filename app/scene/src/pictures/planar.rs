@@ -1,5 +1,6 @@
 //! Flat drawings of planar triangle meshes (deformations and uv layouts).
 
+use super::fibres::{self, Fibres, Segment, StretchScale};
 use super::image::{Orient, Picture, Rgb, hex};
 use super::{View, colour_bar, heat, sv2, title, title_height};
 
@@ -150,6 +151,15 @@ fn clip_half((x, y, w, h): (f64, f64, f64, f64), f: impl Fn((f64, f64)) -> f64) 
     out
 }
 
+/// How one state is drawn: its frame (clip box of the ground), whether in
+/// detail (main panel: rest outline, wireframe, bigger handles) and the
+/// fibres drawn over it.
+struct Panel<'a> {
+    frame: (f64, f64, f64, f64),
+    detail: bool,
+    fibres: Option<(&'a [Segment], StretchScale)>,
+}
+
 fn draw_state(
     pic: &mut Picture,
     fit: &Fit2,
@@ -157,8 +167,9 @@ fn draw_state(
     rest: &[[f64; 2]],
     x: &[[f64; 2]],
     view: &View<'_>,
-    (frame, detail): ((f64, f64, f64, f64), bool),
+    panel: &Panel<'_>,
 ) {
+    let (frame, detail) = (panel.frame, panel.detail);
     if let Some((n, h)) = view.ground {
         // the half-plane n·p < h, hatched
         let world = |(sx, sy): (f64, f64)| {
@@ -189,6 +200,9 @@ fn draw_state(
         hex(0x3a3a3a),
         0.9,
     );
+    if let Some((segs, scale)) = panel.fibres {
+        fibres::draw_flat(pic, fit, segs, scale);
+    }
     let r = if detail { 3.2 } else { 2.0 };
     for (v, p) in x.iter().enumerate() {
         if view.highlight.get(v).copied().unwrap_or(false) {
@@ -208,6 +222,28 @@ pub fn planar(
     shots: &[(usize, Vec<[f64; 2]>)],
     view: &View<'_>,
 ) -> Picture {
+    planar_with(tris, rest, shots, view, None)
+}
+
+/// [`planar`] with each triangle's deformed fibre direction F a drawn in
+/// the main panel, coloured by stretch √I5, with the legend of the volume
+/// pictures (see [`fibres`]) above the body.
+pub fn planar_fibres(
+    tris: &[[usize; 3]],
+    shots: &[(usize, Vec<[f64; 2]>)],
+    view: &View<'_>,
+    fibres: &Fibres<'_, 2>,
+) -> Picture {
+    planar_with(tris, fibres.rest, shots, view, Some(fibres))
+}
+
+fn planar_with(
+    tris: &[[usize; 3]],
+    rest: &[[f64; 2]],
+    shots: &[(usize, Vec<[f64; 2]>)],
+    view: &View<'_>,
+    fibres: Option<&Fibres<'_, 2>>,
+) -> Picture {
     let (w, h) = (view.size.0 as f64, view.size.1 as f64);
     let mut pic = Picture::new(view.size.0, view.size.1, hex(0xfbfbfb));
     let Some((last_frame, last)) = shots.last() else {
@@ -223,20 +259,35 @@ pub fn planar(
     let legend = 3.2 * bar;
     let strip = if shots.len() > 2 { 0.26 * h } else { 0.0 };
     // the main panel frames the result; thumbnails share one framing of all shots
+    // with fibres, their legend gets a row of its own under the title
+    let key = if fibres.is_some() {
+        fibres::legend_height(h)
+    } else {
+        0.0
+    };
     let main_vp = (
         margin,
-        top,
+        top + key,
         w - 2.0 * margin,
-        h - top - strip - margin - legend,
+        h - top - key - strip - margin - legend,
     );
     let fit = Fit2::new(last, main_vp);
-    draw_state(&mut pic, &fit, tris, rest, last, view, (main_vp, true));
+    let segs = fibres.map(|f| fibres::planar_segments(tris, last, f));
+    let panel = Panel {
+        frame: main_vp,
+        detail: true,
+        fibres: segs.as_deref().map(|s| (s, StretchScale::of(s))),
+    };
+    draw_state(&mut pic, &fit, tris, rest, last, view, &panel);
     title(
         &mut pic,
         view.title,
         &format!("frame {last_frame}, {} triangles", tris.len()),
     );
-    let by = top + main_vp.3 + 0.6 * bar;
+    if let Some((_, scale)) = panel.fibres {
+        fibres::legend(&mut pic, scale);
+    }
+    let by = main_vp.1 + main_vp.3 + 0.6 * bar;
     colour_bar(
         &mut pic,
         (margin, by, (0.3 * w).min(260.0), bar),
@@ -254,8 +305,12 @@ pub fn planar(
             let (cw, ch) = (0.92 * cell, strip - 1.6 * label);
             let mut card = Picture::new(cw as usize, ch as usize, hex(0xffffff));
             let f = Fit2::new(&every, (4.0, 4.0, cw - 8.0, ch - 8.0));
-            let whole = (0.0, 0.0, cw, ch);
-            draw_state(&mut card, &f, tris, rest, &shots[i].1, view, (whole, false));
+            let thumb = Panel {
+                frame: (0.0, 0.0, cw, ch),
+                detail: false,
+                fibres: None,
+            };
+            draw_state(&mut card, &f, tris, rest, &shots[i].1, view, &thumb);
             let cx = margin + j as f64 * cell + 0.04 * cell;
             pic.paste(&card, cx as i64, (y0 + 1.6 * label) as i64);
             let text = format!("frame {}", shots[i].0);

@@ -252,7 +252,7 @@ pub fn volume_fibres(
     tets: &[[usize; 4]],
     shots: &[(usize, Vec<[f64; 3]>)],
     view: &View<'_>,
-    fibres: &Fibres<'_>,
+    fibres: &Fibres<'_, 3>,
 ) -> Picture {
     volume_with(tets, shots, view, Some(fibres))
 }
@@ -261,7 +261,7 @@ fn volume_with(
     tets: &[[usize; 4]],
     shots: &[(usize, Vec<[f64; 3]>)],
     view: &View<'_>,
-    fibres: Option<&Fibres<'_>>,
+    fibres: Option<&Fibres<'_, 3>>,
 ) -> Picture {
     let (w, h) = (view.size.0 as f64, view.size.1 as f64);
     let mut pic = Picture::new(view.size.0, view.size.1, [1.0; 3]);

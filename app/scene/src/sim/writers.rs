@@ -170,10 +170,14 @@ impl Dim<2> for Dims {
         body: &Body<2>,
         shots: &[(usize, Vec<[f64; 2]>)],
         view: &pictures::View<'_>,
-        _dirs: &[[f64; 2]],
+        dirs: &[[f64; 2]],
     ) -> Picture {
-        // planar pictures do not draw fibres yet (volume pictures do)
-        Self::picture(body, shots, view)
+        let (tris, _) = body.elements.as_chunks::<3>();
+        let fibres = pictures::Fibres {
+            rest: &body.rest,
+            dirs,
+        };
+        pictures::planar_fibres(tris, shots, view, &fibres)
     }
 
     fn state(body: &Body<2>, x: Vec<[f64; 2]>) -> FinalState {
