@@ -260,5 +260,9 @@ fn fibre_energy_errors_are_located() {
             err.contains(&format!("bad{k}.toml:")) && err.contains(key) && err.contains(want),
             "{key} / {want}: {err}"
         );
+        // nothing was written for a scene refused before running
+        let out = dir.path().join(format!("out-bad{k}"));
+        let written = fs::read_dir(&out).map(|d| d.count()).unwrap_or(0);
+        assert_eq!(written, 0, "{key}: files left in {}", out.display());
     }
 }
