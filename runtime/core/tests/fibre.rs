@@ -435,6 +435,28 @@ fn element_chain_rule_3d_and_2d() {
     assert!(rel(&ev.hess, &fd_hessian(psi, &flat, 1.0)) < 1e-5);
 }
 
+/// The raw element Hessian at an exact pole σ₂ + σ₃ = 0 (an I4 term, the
+/// fibre off the singular axes): Wᵀ H W meets ∞ − ∞, reported as +∞ like the
+/// F-space Hessian, never NaN; the filtered one stays finite.
+#[test]
+fn element_hessian_at_an_exact_pole_is_never_nan() {
+    let rest =
+        Rest::<3>::new([[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).unwrap();
+    let x = [[0.0; 3], [1.3, 0.0, 0.0], [0.0, 0.9, 0.0], [0.0, 0.0, -0.9]];
+    let a = unit_fibre(&[1.0, 0.5, 0.2]).unwrap();
+    for e in [&Mixed as &dyn FibreEnergy<3>, &I4Only] {
+        let raw = fibre_element_eval(e, &rest, &x, &a, Filter::None, true).hess;
+        assert!(raw.iter().all(|v| !v.is_nan()), "{}", e.name());
+        assert!(
+            raw.iter().any(|v| v.is_infinite()),
+            "{}: not a pole",
+            e.name()
+        );
+        let clamped = fibre_element_eval(e, &rest, &x, &a, Filter::Clamp, true).hess;
+        assert!(clamped.iter().all(|v| !v.is_nan()), "{}", e.name());
+    }
+}
+
 #[test]
 fn parameters_and_registry() {
     let mut f = FibreFung::default();

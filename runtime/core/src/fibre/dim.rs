@@ -124,7 +124,7 @@ macro_rules! fibre_dim {
                     Hess::Closed(fl, n) => closed_element::<$d, $k, $ne>(rest, a, fl, &n),
                     Hess::Full(h) => {
                         let h = w.transpose() * h * w * m;
-                        (h + h.transpose()) * 0.5
+                        pole_infinite((h + h.transpose()) * 0.5)
                     }
                 };
                 (
@@ -138,6 +138,16 @@ macro_rules! fibre_dim {
             }
         }
     };
+}
+
+/// A raw element Hessian at an exact pole σᵢ + σⱼ = 0: the F-space Hessian
+/// has ±∞ entries, and Wᵀ H W sums them to ∞ − ∞. Such an entry is reported
+/// as +∞, as the F-space Hessian and the C++ runtime report it, never NaN.
+fn pole_infinite<const N: usize>(mut h: SMatrix<f64, N, N>) -> SMatrix<f64, N, N> {
+    h.iter_mut()
+        .filter(|v| v.is_nan())
+        .for_each(|v| *v = f64::INFINITY);
+    h
 }
 
 fibre_dim!(2, 4, 3, 6, 3);
