@@ -2,7 +2,8 @@
 //! header. Standard output and `-o` give the same text; `--name` names the
 //! struct; a name C++ cannot use is refused (exit 1, nothing written); and a
 //! program built on the emitted header (g++ -Wall -Wextra -Werror) prints the
-//! same Ψ, gradient and raw/projected Hessian as `ecc eval --json`.
+//! same Ψ, gradient and raw/projected Hessian as `ecc eval --json` (and, for a
+//! `.psi` with `fiber a`, the same fibre part as `ecc eval --fiber --json`).
 
 mod common;
 
@@ -221,4 +222,94 @@ fn cpp_example_reaches_the_rust_final_energy() {
         "C++ example {cpp} vs ecc sim {rust}"
     );
     assert!(last.contains("flipped 0"), "{last}");
+}
+
+/// A `.psi` with `fiber a` emits too (#16): the header's `fibre_eval` gives
+/// the same ψ, I5, gradient and raw-Hessian trace (the eigenvalue sum) as
+/// `ecc eval --fiber --json`, for a closed-form (StVK) and an I4 (ARAP) energy.
+#[test]
+fn fibre_energies_emit_and_agree_with_ecc_eval() {
+    let f = [1.2, 0.1, 0.0, 0.0, 0.9, 0.1, 0.05, 0.0, 1.1];
+    let dir_a = [1.0, 0.5, 0.2];
+    for stem in ["fibre_stvk", "fibre_arap"] {
+        let dir = tempfile::tempdir().unwrap();
+        let hpp = dir.path().join("energy.hpp");
+        ok(&[
+            &lib(stem),
+            "--emit",
+            "cpp",
+            "--name",
+            "E",
+            "-o",
+            hpp.to_str().unwrap(),
+        ]);
+        let main = format!(
+            r#"#include "energy.hpp"
+#include <cmath>
+#include <cstdio>
+int main() {{
+    const double v[] = {{{f}}};
+    double F[3][3], a[3] = {{{a}}};
+    for (int i = 0; i < 3; ++i) for (int j = 0; j < 3; ++j) F[i][j] = v[i * 3 + j];
+    double n = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (double& x : a) x /= n;
+    ecc::energies::E e;
+    auto p = e.fibre_eval(F, a, ecc::Filter::none());
+    double tr = 0.0;
+    for (int i = 0; i < 9; ++i) tr += p.hess[i][i];
+    std::printf("%.17g\n%.17g\n", p.psi, p.i5);
+    for (double g : p.grad) std::printf("%.17g\n", g);
+    std::printf("%.17g\n", tr);
+}}
+"#,
+            f = f.map(|x| x.to_string()).join(", "),
+            a = dir_a.map(|x| x.to_string()).join(", "),
+        );
+        let src = dir.path().join("main.cpp");
+        std::fs::write(&src, main).unwrap();
+        let exe = dir.path().join("main");
+        let c = Command::new("g++")
+            .args(["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror"])
+            .arg(&src)
+            .arg("-o")
+            .arg(&exe)
+            .output()
+            .expect("g++ runs (.ci/run installs it)");
+        assert!(
+            c.status.success(),
+            "{stem}: {}",
+            String::from_utf8_lossy(&c.stderr)
+        );
+        let out = Command::new(&exe).output().unwrap();
+        let got: Vec<f64> = String::from_utf8(out.stdout)
+            .unwrap()
+            .lines()
+            .map(|l| l.parse().unwrap())
+            .collect();
+        let text = ok(&[
+            "eval",
+            &lib(stem),
+            "--dim",
+            "3",
+            "--F",
+            "1.2 0.1 0; 0 0.9 0.1; 0.05 0 1.1",
+            "--fiber",
+            "1 0.5 0.2",
+            "--json",
+        ]);
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        let fib = &v["fibre"];
+        let num = |x: &serde_json::Value| x.as_f64().unwrap();
+        let mut want = vec![num(&fib["psi"]), num(&fib["I5"])];
+        want.extend(fib["gradient"].as_array().unwrap().iter().map(num));
+        want.push(fib["eigenvalues"].as_array().unwrap().iter().map(num).sum());
+        assert_eq!(got.len(), want.len(), "{stem}");
+        let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (k, (a, b)) in got.iter().zip(&want).enumerate() {
+            assert!(
+                (a - b).abs() <= 1e-10 * scale,
+                "{stem} value {k}: C++ {a}, ecc eval {b}"
+            );
+        }
+    }
 }
