@@ -153,7 +153,8 @@ pub struct FibreIr {
     /// Which invariants ψ reads.
     pub uses: FibreUses,
     /// d4, d44 and d45 are identically 0: the closed-form eigensystem of
-    /// I5 (Kim & Eberle 2022 §7.3; `ecc_runtime::fibre::point`, P3–P5)
+    /// I5 (Kim, de Goes & Iben 2019 §4.1 eq. 7 through the chain rule;
+    /// `ecc_runtime::fibre::point`, P3–P5)
     /// applies everywhere, even if ψ reads sign(I4).
     pub closed_form: bool,
     /// ψ's domain as written (same rules as [`DimIr::domain`]): ψ = +∞

@@ -4,7 +4,7 @@
 //! `ecc_runtime::energies::fibre_by_name` — agree on ψ and its five partials
 //! at random points incl. I4 < 0, I5 → 0 and large I5; the interpreted
 //! partials match central differences; the raw F-space Hessian's numeric
-//! eigenvalues are HOBAK's published ones (Kim & Eberle 2022 §7.3).
+//! eigenvalues are HOBAK's published ones (`ANISOTROPIC_*::clampedHessian`).
 
 use ecc_runtime::fibre::{fibre_f, i5_eigenvalues, invariant5};
 use ecc_runtime::{FibreDerivs, FibreEnergy, FibreUse, filter::Filter};
@@ -142,7 +142,7 @@ fn outside_the_domain_psi_is_infinite_never_nan() {
     assert_eq!(f.fibre(0.5, 1.0).psi, 0.5);
 }
 
-/// HOBAK's eigenvalues (Kim & Eberle 2022 §7.3): (along, across).
+/// HOBAK's eigenvalues (`ANISOTROPIC_*::clampedHessian`): (along, across).
 fn published(stem: &str, i4: f64, i5: f64) -> (f64, f64) {
     let (mu, k1, k2) = (1.0, 1.0, 1.0);
     match stem {

@@ -15,8 +15,9 @@
 //! differentiation; sign(I4) is a leaf with derivative 0 (piecewise
 //! constant). ψ reads I4 when I4 or sign(I4) is a leaf of ψ or of an active
 //! domain condition; the closed-form eigensystem of I5 applies when
-//! ψ4 ≡ ψ44 ≡ ψ45 ≡ 0 (Kim & Eberle 2022 §7.3; `ecc_runtime::fibre::point`,
-//! eqs. P3–P5), e.g. anisotropic ARAP μ/2 (√I5 − sign(I4))².
+//! ψ4 ≡ ψ44 ≡ ψ45 ≡ 0 (Kim, de Goes & Iben 2019 §4.1 eq. 7 through the chain
+//! rule; `ecc_runtime::fibre::point`, eqs. P3–P5), e.g. anisotropic ARAP
+//! μ/2 (√I5 − sign(I4))².
 
 use crate::cas::{Graph, Id, Node, Sym};
 use crate::diag::Error;
