@@ -155,6 +155,8 @@ fn a_psi_fibre_energy_equals_the_library_one() {
     // the fibres matter: without them the run differs
     let plain = summary(dir.path(), "plain", &bar(snh, ""));
     assert_ne!(frames(&plain), frames(&by_name));
+    assert!(plain.get("fibre_energy").is_none(), "no fibre term, no key");
+    assert_eq!(by_psi["fibre_energy"]["params"]["mu"], 50.0);
     // 2D: the same on a planar strip, fibres at 30°
     let fibres2 = |energy: &str| {
         format!(
@@ -194,6 +196,15 @@ fn energy_psi_with_a_fibre_part_is_both_parts() {
         ),
     );
     assert_same_run(&whole, &split, "muscle.psi vs snh.psi + fibre-stvk");
+    // summary.json names both parts: the body's Ψ_iso and the fibre part,
+    // each with the file's (shared) parameters
+    assert_eq!(whole["energy"]["name"], "muscle");
+    assert_eq!(whole["fibre_energy"]["name"], "muscle");
+    for part in ["energy", "fibre_energy"] {
+        let p = &whole[part]["params"];
+        assert_eq!((&p["mu"], &p["k"]), (&1.5.into(), &20.0.into()), "{part}");
+    }
+    assert_eq!(split["fibre_energy"]["params"]["mu"], 20.0);
 }
 
 /// Every refusal: exit code 1, `scene.toml:LINE:COL: `key`: message`.

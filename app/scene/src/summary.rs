@@ -244,6 +244,11 @@ pub struct Summary {
     pub mesh: MeshStats,
     /// The energy.
     pub energy: EnergyStats,
+    /// The fibre energy ψ(I4, I5) of the fibre term (`[fibers] energy`, or
+    /// the fibre part of `[energy] psi`; `barrier` is false); absent without
+    /// a fibre term (additive key).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fibre_energy: Option<EnergyStats>,
     /// Effects the scene names.
     pub effects: Vec<String>,
     /// Terms in the objective and their cost (exactly the assembled ones).

@@ -144,9 +144,19 @@ fn the_fibre_part_of_energy_psi_is_the_fibre_term() {
     assert_eq!(by_psi.summary.converged_frames, 2);
     assert_eq!(final_x(&by_psi), final_x(&by_names));
     assert_eq!(by_psi.summary.final_energy, by_names.summary.final_energy);
+    // the summary names the fibre energy with its parameters
+    let fib = by_psi
+        .summary
+        .fibre_energy
+        .as_ref()
+        .expect("a fibre energy");
+    assert_eq!(Some(fib), by_names.summary.fibre_energy.as_ref());
+    assert_eq!(fib.params.get("mu"), Some(&3.0));
+    assert!(!fib.barrier);
     // and the fibre part is there: without [fibers] the result differs
     let plain = run(&bar("name = \"snh\"\nparams = { mu = 3.0 }", "")).unwrap();
     assert_ne!(final_x(&plain), final_x(&by_psi));
+    assert_eq!(plain.summary.fibre_energy, None);
 }
 
 /// `[fibers] energy = "x.psi"` asks the provider for that file's fibre part,

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use ecc_fem::{Term, TermTiming};
 use ecc_mesh::TriMesh;
-use ecc_runtime::Energy;
+use ecc_runtime::{Energy, FibreEnergy};
 
 use crate::error::SceneError;
 use crate::output::OutputDir;
@@ -149,6 +149,15 @@ pub(crate) fn energy_stats<const D: usize>(e: &dyn Energy<D>) -> EnergyStats {
         name: e.name().to_string(),
         params: e.params().into_iter().collect::<BTreeMap<_, _>>(),
         barrier: e.info().barrier,
+    }
+}
+
+/// The fibre energy's name and parameters.
+pub(crate) fn fibre_stats<const D: usize>(e: &dyn FibreEnergy<D>) -> EnergyStats {
+    EnergyStats {
+        name: e.name().to_string(),
+        params: e.fibre_params().into_iter().collect::<BTreeMap<_, _>>(),
+        barrier: false,
     }
 }
 

@@ -8,7 +8,7 @@ use std::time::Instant;
 use ecc_runtime::FibreEnergy;
 
 use super::build::{EngineInput, build_engine, frame_count};
-use super::context::{Context, RunReport, energy_stats, finish, term_stats};
+use super::context::{Context, RunReport, energy_stats, fibre_stats, finish, term_stats};
 use super::engine::Engine;
 use super::observer::Observer;
 use super::view::{camera, ground_plane, up_direction};
@@ -51,6 +51,7 @@ where
 {
     let counters = Arc::new(Counters::default());
     let energy = energy_stats::<D>(body.energy.as_ref());
+    let fibre_energy = fibre.as_deref().map(fibre_stats::<D>);
     let rest_measure = body.total_rest_measure();
     let writer = <Dims as Dim<D>>::writer(&body);
     let mut engine: Engine<D> = build_engine(EngineInput {
@@ -65,6 +66,7 @@ where
     let setup_seconds = ctx.t0.elapsed().as_secs_f64();
     let stepped = step_frames(ctx, &mut engine, writer.as_ref(), out, obs)?;
     let mut summary = summarize(ctx, &engine, &counters, energy, rest_measure, stepped.stats);
+    summary.fibre_energy = fibre_energy;
     summary.setup_seconds = setup_seconds;
     summary.output_seconds = stepped.output_seconds;
     let handles: Vec<Vec<usize>> = engine.handles.iter().map(|h| h.vertices.clone()).collect();
@@ -185,6 +187,7 @@ fn summarize<const D: usize>(
             .into(),
         mesh: ctx.mesh_stats(rest_measure),
         energy,
+        fibre_energy: None,
         effects: ctx.effects(),
         terms: term_stats(engine.solver.terms(), &engine.journal.timings),
         counters: counters.values(),

@@ -227,6 +227,7 @@ pub(crate) fn run_parameterization(
         projection: projection(&file.scene.solver).name().into(),
         mesh: ctx.mesh_stats(problem.input_area),
         energy: estats,
+        fibre_energy: None,
         effects: ctx.effects(),
         terms: term_stats(problem.solver.terms(), &r.terms),
         counters: Counters::default().values(),
