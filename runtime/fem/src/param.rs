@@ -293,3 +293,66 @@ pub fn parameterize<E: Energy<2> + ?Sized + 'static>(
 ) -> Result<Parameterization, FemError> {
     prepare(mesh, energy, opts)?.solve_with(|_, _| ControlFlow::Continue(()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ecc_runtime::energies::SymmetricDirichlet;
+
+    fn prepare_sd(positions: Vec<[f64; 3]>, triangles: Vec<[usize; 3]>) -> Result<(), FemError> {
+        let mesh = TriMesh::new(positions, triangles);
+        prepare(
+            &mesh,
+            Arc::new(SymmetricDirichlet),
+            &ParamOptions::default(),
+        )
+        .map(|_| ())
+    }
+
+    /// The Tutte solve runs beside the solver build: its errors and the
+    /// build's keep their order (rest shape first, then the topology).
+    #[test]
+    fn errors_keep_their_order_with_the_concurrent_tutte_solve() {
+        let tet = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+        ];
+        let closed = vec![[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
+        // a closed surface: no Tutte embedding
+        let e = prepare_sd(tet.clone(), closed.clone()).unwrap_err();
+        assert!(matches!(e, FemError::Tutte(_)), "{e}");
+        // also a degenerate triangle: the rest-shape error wins, as before
+        let mut p = tet;
+        p.push([2.0, 0.0, 0.0]);
+        let mut t = closed;
+        t.push([0, 1, 4]);
+        let e = prepare_sd(p, t).unwrap_err();
+        assert!(
+            matches!(e, FemError::DegenerateRest { element: 4, .. }),
+            "{e}"
+        );
+        assert!(matches!(
+            prepare_sd(Vec::new(), Vec::new()),
+            Err(FemError::EmptyMesh)
+        ));
+    }
+
+    /// The concurrent setup gives the start and problem of the sequential
+    /// one: the Tutte embedding rescaled to the rest area.
+    #[test]
+    fn the_start_is_the_rescaled_tutte_embedding() {
+        let mut mesh = ecc_mesh::disk_tri(4, 2.0);
+        for p in &mut mesh.positions {
+            p[2] = 0.1 * p[0] * p[1];
+        }
+        let opts = ParamOptions::default();
+        let prob = prepare(&mesh, Arc::new(SymmetricDirichlet), &opts).unwrap();
+        let uv = tutte_embedding(&mesh, opts.tutte).unwrap();
+        let want = tutte_start(&mesh, uv, prob.rest_area).unwrap();
+        assert_eq!(prob.start, want);
+        assert!((prob.rest_area - 1.0).abs() < 1e-12);
+        assert!(prob.tutte_seconds >= 0.0 && prob.setup_seconds >= 0.0);
+    }
+}
