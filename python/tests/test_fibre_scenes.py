@@ -82,6 +82,7 @@ def test_energy_psi_with_a_fibre_part_is_both_parts_as_in_the_cli(root, tmp_path
         '[fibers]\nenergy = "fibre-stvk"\nparams = { mu = 20.0 }\ndirection = [1, 0, 1]',
     ))
     assert_same_run(whole, split)
+    assert whole["fibre_energy"]["params"]["k"] == 20.0 and whole["energy"]["params"]["mu"] == 1.5
     # the CLI runs the same scene through the same interpreter: same numbers
     cli = subprocess.run(
         [ecc_bin, "sim", str(tmp_path / "whole.toml"), "-q", "--json", "--no-pictures",
