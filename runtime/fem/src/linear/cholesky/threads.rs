@@ -41,9 +41,12 @@ pub enum ThreadPolicy {
     /// Tree-level parallelism: the two halves of a vertex separator are
     /// factorised concurrently, each on one thread, and the separator densely
     /// (`split.rs`), when the pool has at least two threads at the symbolic
-    /// analysis and the factorisation is large enough to pay
-    /// ([`super::SPLIT_MIN_FLOPS`]); otherwise as [`ThreadPolicy::Sequential`].
-    /// The same bits run to run for a given number of threads.
+    /// analysis, the factorisation is large enough to pay
+    /// ([`super::SPLIT_MIN_FLOPS`]) and the split's estimated critical path
+    /// is at most 0.75 of the plain factorisation's flops (`tree.rs`);
+    /// otherwise as [`ThreadPolicy::Sequential`]. Decided from the symbolic
+    /// analysis alone, and the same bits run to run for a given number of
+    /// threads.
     Split,
 }
 

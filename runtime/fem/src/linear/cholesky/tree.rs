@@ -18,10 +18,10 @@
 //! forest is split between the two halves by longest-processing-time
 //! greedy on subtree flops, until the heaviest subtree is below a quarter of
 //! the total. The S with the least estimated critical path,
-//! max(flops of a half's subtrees) + ⅕k³, is kept (k separator unknowns:
+//! max(flops of a half's subtrees) + k³/3, is kept (k separator unknowns:
 //! the halves' subtree flops already include their updates of S, and the
-//! only extra work is the dense L_Σ, k³/3 in the Σ c² measure, weighted ⅗
-//! because a dense kernel runs at a higher rate than the sparse supernodes).
+//! only extra work is the dense L_Σ, Σ_{j<k} (k − j)² ≈ k³/3 in the same
+//! Σ c² measure).
 //!
 //! The split is used (unless forced) only when that critical path is at
 //! most [`MAX_CRITICAL_RATIO`] of the plain factorisation's flops: the
@@ -32,7 +32,7 @@
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
 /// Weight of k³ in the estimated critical path (see the module docs).
-const DENSE_WEIGHT: f64 = 0.2;
+const DENSE_WEIGHT: f64 = 1.0 / 3.0;
 
 /// A split is made when its estimated critical path is at most this
 /// fraction of the plain factorisation's flops (an estimated speed-up of
