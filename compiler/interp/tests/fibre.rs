@@ -4,7 +4,10 @@
 //! `ecc_runtime::energies::fibre_by_name` — agree on ψ and its five partials
 //! at random points incl. I4 < 0, I5 → 0 and large I5; the interpreted
 //! partials match central differences; the raw F-space Hessian's numeric
-//! eigenvalues are HOBAK's published ones (`ANISOTROPIC_*::clampedHessian`).
+//! eigenvalues are HOBAK's published forms (`ANISOTROPIC_*::clampedHessian`;
+//! for fibre_fung, HOBAK's Fung structure with the HGO exponent), and
+//! HOBAK's own Fung energy written in the language has HOBAK's eigenvalues
+//! and clamped Hessian.
 
 use ecc_runtime::fibre::{fibre_f, i5_eigenvalues, invariant5};
 use ecc_runtime::{FibreDerivs, FibreEnergy, FibreUse, filter::Filter};
@@ -197,6 +200,88 @@ fn raw_hessian_eigenvalues_are_hobaks_published_forms() {
             }
         }
     }
+}
+
+/// HOBAK's own Fung energy, written in the language: Ψ = μ(exp(I5 − 1) − I5)
+/// (HOBAKv1 src/Hyperelastic/Volume/ANISOTROPIC_FUNG.cpp; the library's
+/// fibre_fung.psi is the Holzapfel–Gasser–Ogden form instead). Its raw
+/// Hessian's numeric eigenvalues are HOBAK's λ₀ = λ₁ + 4μ I5 e^{I5−1} (×1),
+/// λ₁ = 2μ(e^{I5−1} − 1) (×2) and 0 (×6), and ecc's clamped Hessian is
+/// HOBAK's `clampedHessian`, transcribed here from that file: the full
+/// 2μ((e − 1) A⊗I + 2e vec(FA) vec(FA)ᵀ) when λ₀, λ₁ > 0, 0 when λ₀ < 0,
+/// else λ₀ n nᵀ with n = vec(FA)/‖vec(FA)‖.
+#[test]
+fn hobaks_fung_written_in_the_language_has_hobaks_eigensystem() {
+    let mu = 1.3;
+    let m = ecc_dsl::compile(
+        "fiber a\nparam mu = 1\npsi = mu*(exp(I5 - 1) - I5)",
+        "hobak_fung",
+    )
+    .unwrap();
+    let e = ecc_interp::fibre_from_module::<3>(&m, "hobak_fung", &[("mu".to_string(), mu)])
+        .unwrap()
+        .expect("a fibre part");
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let (mut both, mut rank_one, mut zero) = (0, 0, 0);
+    for trial in 0..60 {
+        let scale = [0.2, 0.6, 1.0, 1.6][trial % 4];
+        let mut f = SMatrix::<f64, 3, 3>::from_fn(|_, _| scale * rng.gen_range(-1.0..1.0));
+        if trial % 3 == 0 {
+            f = -f;
+        }
+        let a = SVector::<f64, 3>::from_fn(|_, _| rng.gen_range(-1.0..1.0)).normalize();
+        let fa = f * a;
+        let i5 = fa.norm_squared();
+        let ex = (i5 - 1.0).exp();
+        let l1 = 2.0 * mu * (ex - 1.0);
+        let l0 = l1 + 4.0 * mu * i5 * ex;
+        // vec(F A) column-major, A = a aᵀ: (F A)[r, c] = (F a)[r] a[c].
+        let vfa = SVector::<f64, 9>::from_fn(|k, _| fa[k % 3] * a[k / 3]);
+        let h5 = SMatrix::<f64, 9, 9>::from_fn(|i, j| {
+            if i % 3 == j % 3 {
+                a[i / 3] * a[j / 3]
+            } else {
+                0.0
+            }
+        });
+        let full = (h5 * (ex - 1.0) + vfa * vfa.transpose() * (2.0 * ex)) * (2.0 * mu);
+        let hobak_clamped = if l0 > 0.0 && l1 > 0.0 {
+            both += 1;
+            full
+        } else if l0 < 0.0 {
+            zero += 1;
+            SMatrix::zeros()
+        } else {
+            rank_one += 1;
+            let n = vfa.normalize();
+            n * n.transpose() * l0
+        };
+        let raw = fibre_f(&e, &f, &a, Filter::None, true).hess;
+        let mut got: Vec<f64> = SymmetricEigen::new(raw)
+            .eigenvalues
+            .iter()
+            .copied()
+            .collect();
+        let mut want = vec![l0, l1, l1, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        got.sort_by(f64::total_cmp);
+        want.sort_by(f64::total_cmp);
+        let s = want.iter().fold(1.0f64, |m, x| m.max(x.abs()));
+        for (g, w) in got.iter().zip(&want) {
+            assert!((g - w).abs() <= 1e-10 * s, "F = {f}: {got:?} vs {want:?}");
+        }
+        assert!(
+            (raw - full).abs().max() <= 1e-10 * s,
+            "raw Hessian, F = {f}"
+        );
+        let clamped = fibre_f(&e, &f, &a, Filter::Clamp, true).hess;
+        assert!(
+            (clamped - hobak_clamped).abs().max() <= 1e-10 * s,
+            "clamped Hessian, F = {f}"
+        );
+    }
+    // The sample reaches HOBAK's two clamped branches, not only the PSD one
+    // (λ₀ < 0 cannot happen: λ₀ = 2μ(e(1 + 2 I5) − 1) > 0 for I5 ≥ 0).
+    assert!(both > 5 && rank_one > 5, "{both} {rank_one} {zero}");
 }
 
 /// The whole-energy entry points refuse a fibre energy instead of silently
