@@ -14,7 +14,8 @@
 //!   to x), `tinyad` (TinyAD's rule: `one+b0.8+c1e-4+eps1e-9`), `disk`
 //!   (Tutte start left on the unit circle), `raw` (mesh at its own scale,
 //!   objective Σ A (‖J‖² + ‖J⁻¹‖²): TinyAD-Examples' units; `disk+raw` is
-//!   their `parametrization_*.cc` setup).
+//!   their `parametrization_*.cc` setup), `trn` (filter policy
+//!   `TrustRegionNewton`).
 //!
 //! Same start, scaling and stopping rule as the report (unit area, mean
 //! energy, uniform Tutte start, ‖∇E‖∞ ≤ 1e-4; here the solve stops there).
@@ -25,8 +26,8 @@
 use std::sync::Arc;
 
 use ecc_benches::solve::{self, SolveLimits, SolveMethod, Variant};
-use ecc_fem::Filter;
 use ecc_fem::elastic::{HYBRID_MIN_COND, Projection};
+use ecc_fem::{Filter, FilterPolicy};
 
 fn parse(spec: &str) -> Result<(SolveMethod, Variant), String> {
     let mut parts = spec.split('+');
@@ -59,13 +60,14 @@ fn parse(spec: &str) -> Result<(SolveMethod, Variant), String> {
         match change {
             "one" => v.barrier_safety = f64::INFINITY,
             "disk" => v.unit_disk_start = true,
+            "trn" => v.filter_policy = Some(FilterPolicy::TrustRegionNewton),
             "raw" => v.raw_units = true,
             "tinyad" => {
-                v = Variant {
-                    projection: v.projection,
-                    tol_abs: v.tol_abs,
-                    ..Variant::tinyad()
-                }
+                let t = Variant::tinyad();
+                v.filter = t.filter;
+                v.barrier_safety = t.barrier_safety;
+                v.backtrack = t.backtrack;
+                v.armijo_c1 = t.armijo_c1;
             }
             c if c.starts_with("eps") => v.filter = Some(Filter::ClampEps(num("eps")?)),
             c if c.starts_with('s') => v.barrier_safety = num("s")?,

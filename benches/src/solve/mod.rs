@@ -170,6 +170,8 @@ pub struct Variant {
     pub backtrack: f64,
     /// `NewtonParams::armijo_c1`.
     pub armijo_c1: f64,
+    /// Filter policy instead of the method's (e.g. `TrustRegionNewton`).
+    pub filter_policy: Option<FilterPolicy>,
     /// Stopping tolerance on ‖∇E‖∞ (the report runs to 1e-8).
     pub tol_abs: f64,
     /// Keep the Tutte start on the unit circle instead of scaling it to the
@@ -190,6 +192,7 @@ impl Default for Variant {
             barrier_safety: p.barrier_safety,
             backtrack: p.backtrack,
             armijo_c1: p.armijo_c1,
+            filter_policy: None,
             tol_abs: THRESHOLDS[3],
             unit_disk_start: false,
             raw_units: false,
@@ -215,6 +218,9 @@ impl Variant {
     fn apply(&self, p: &mut NewtonParams) {
         if let Some(f) = self.filter {
             p.filter = f;
+        }
+        if let Some(policy) = self.filter_policy {
+            p.filter_policy = policy;
         }
         p.barrier_safety = self.barrier_safety;
         p.backtrack = self.backtrack;
@@ -455,4 +461,28 @@ pub fn deformation(
     )
     .map_err(err)?;
     record(solver, &mut x, problem, method, mesh.tets.len(), limits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn variants_change_only_their_fields() {
+        let limits = SolveLimits {
+            seconds: 1.0,
+            newton_iters: 7,
+            proxy_iters: 3,
+        };
+        let base = params(SolveMethod::NumericProjection, &limits, 0.5);
+        let mut p = base.clone();
+        Variant::default().apply(&mut p);
+        assert_eq!(format!("{p:?}"), format!("{base:?}"));
+        Variant::tinyad().apply(&mut p);
+        assert_eq!(p.filter, Filter::ClampEps(1e-9));
+        assert_eq!(p.barrier_safety, f64::INFINITY);
+        assert_eq!((p.backtrack, p.armijo_c1), (0.8, 1e-4));
+        assert_eq!((p.max_iters, p.energy_scale), (7, 0.5));
+        assert_eq!(p.filter_policy, FilterPolicy::Fixed);
+    }
 }
