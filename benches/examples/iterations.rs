@@ -3,7 +3,10 @@
 //!
 //! `cargo run --release -p ecc-benches --example iterations MESH SPEC…`
 //!
-//! MESH is a file of the data folder (e.g. `hand_1_i_f5000.obj`). Each SPEC
+//! MESH is a triangle mesh of the data folder (e.g. `hand_1_i_f5000.obj`),
+//! parameterised, or `hand.mesh:arap` / `hand.mesh:snh`, the report's
+//! twist-and-pull deformation of a tet mesh (fixed handles; `disk`/`raw`
+//! do not apply; tol 1e-4 as everywhere here). Each SPEC
 //! is a base method followed by `+`-separated changes:
 //! * bases: `fspace`, `element`, `hybrid` (analytic clamp with that
 //!   projection), `numeric` (raw element Hessian, nalgebra eigensolve of the
@@ -25,9 +28,10 @@
 
 use std::sync::Arc;
 
-use ecc_benches::solve::{self, SolveLimits, SolveMethod, Variant};
+use ecc_benches::solve::{self, SolveError, SolveLimits, SolveMethod, Trace, Variant};
 use ecc_fem::elastic::{HYBRID_MIN_COND, Projection};
 use ecc_fem::{Filter, FilterPolicy};
+use ecc_runtime::Energy;
 
 fn parse(spec: &str) -> Result<(SolveMethod, Variant), String> {
     let mut parts = spec.split('+');
@@ -79,19 +83,45 @@ fn parse(spec: &str) -> Result<(SolveMethod, Variant), String> {
     Ok((method, v))
 }
 
+type Solve = Box<dyn Fn(SolveMethod, &SolveLimits, &Variant) -> Result<Trace, SolveError>>;
+
+/// The problem named by MESH: `NAME.mesh:arap` / `NAME.mesh:snh` is the
+/// report's twist-and-pull deformation of that tet mesh, anything else the SD
+/// parameterisation of a triangle mesh.
+fn problem(file: &str) -> Result<Solve, Box<dyn std::error::Error>> {
+    let data = ecc_mesh::data_dir();
+    if let Some((name, energy)) = file.split_once(':') {
+        let mesh = ecc_mesh::read_tet_mesh(data.join(name))?;
+        let energy: Arc<dyn Energy<3>> = match energy {
+            "arap" => Arc::new(ecc_energies::Arap::new()),
+            "snh" => Arc::new(ecc_energies::StableNeoHookean::new()),
+            other => return Err(format!("{file}: unknown energy `{other}`").into()),
+        };
+        let file = file.to_string();
+        return Ok(Box::new(move |m, l, v| {
+            solve::deformation_with(&file, &mesh, energy.clone(), m, l, v)
+        }));
+    }
+    let mesh = ecc_mesh::read_tri_mesh(data.join(file))?;
+    let file = file.to_string();
+    Ok(Box::new(move |m, l, v| {
+        let e = Arc::new(ecc_energies::SymmetricDirichlet2::new());
+        solve::parameterization_with(&file, &mesh, e, m, l, v)
+    }))
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
     let file = args.next().ok_or("usage: iterations MESH SPEC…")?;
-    let mesh = ecc_mesh::read_tri_mesh(ecc_mesh::data_dir().join(&file))?;
     let limits = SolveLimits {
         seconds: 600.0,
         newton_iters: 1000,
         proxy_iters: 0,
     };
+    let solve = problem(&file)?;
     for spec in args {
         let (method, variant) = parse(&spec)?;
-        let e = Arc::new(ecc_energies::SymmetricDirichlet2::new());
-        let tr = solve::parameterization_with(&file, &mesh, e, method, &limits, &variant)?;
+        let tr = solve(method, &limits, &variant)?;
         let its = tr.iters_to(1e-4).map_or("-".into(), |i| i.to_string());
         let secs = tr.time_to(1e-4).map_or("-".into(), |t| format!("{t:.3}"));
         println!(

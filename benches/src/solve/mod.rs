@@ -446,20 +446,30 @@ pub fn deformation(
     method: SolveMethod,
     limits: &SolveLimits,
 ) -> Result<Trace, SolveError> {
-    let elastic =
-        Elastic::<dyn Energy<3>, Tet>::new(energy, &mesh.positions, &mesh.tets).map_err(err)?;
+    deformation_with(problem, mesh, energy, method, limits, &Variant::default())
+}
+
+/// [`deformation`] with the solver's defaults changed by `variant` (its
+/// start and unit fields do not apply: the start is [`handle_setup`]'s).
+pub fn deformation_with(
+    problem: &str,
+    mesh: &TetMesh,
+    energy: Arc<dyn Energy<3>>,
+    method: SolveMethod,
+    limits: &SolveLimits,
+    variant: &Variant,
+) -> Result<Trace, SolveError> {
+    let elastic = Elastic::<dyn Energy<3>, Tet>::new(energy, &mesh.positions, &mesh.tets)
+        .map_err(err)?
+        .with_projection(variant.projection);
     let volume = elastic.total_measure();
     let rest = elastic.rest().to_vec();
     let name = elastic.energy().name().to_string();
     let term = wrap(method, Box::new(elastic), &name, rest)?;
     let (handles, mut x) = handle_setup(mesh);
-    let solver = NewtonSolver::new(
-        mesh.positions.len(),
-        vec![term],
-        &handles,
-        params(method, limits, 1.0 / volume),
-    )
-    .map_err(err)?;
+    let mut p = params(method, limits, 1.0 / volume);
+    variant.apply(&mut p);
+    let solver = NewtonSolver::new(mesh.positions.len(), vec![term], &handles, p).map_err(err)?;
     record(solver, &mut x, problem, method, mesh.tets.len(), limits)
 }
 
