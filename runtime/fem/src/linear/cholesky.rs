@@ -275,8 +275,9 @@ impl CholeskyFactor {
     /// Estimated floating-point operations of one numeric factorisation,
     /// Σ_j c_j² over the column counts c_j of L (supernodal: column k of a
     /// supernode of width w with r off-diagonal rows has c = w − k + r).
-    /// A split factor counts both halves and ≈ k³ for its separator's
-    /// dense terms (k separator unknowns).
+    /// A split factor counts both halves' own columns (their updates of the
+    /// separator included) and ≈ k³/3 for the dense L_Σ (k separator
+    /// unknowns).
     pub fn factor_flops(&self) -> f64 {
         match &self.split {
             Some(s) => s.flops(),
@@ -285,8 +286,9 @@ impl CholeskyFactor {
     }
 
     /// For a split factor ([`ThreadPolicy::Split`]): the separator's number
-    /// of unknowns and the estimated flops of the larger half (the critical
-    /// path on two threads); `None` when the factorisation is not split.
+    /// of unknowns and the estimated flops of the critical path on two
+    /// threads (the larger half, then L_Σ); `None` when the factorisation is
+    /// not split.
     pub fn split(&self) -> Option<(usize, f64)> {
         self.split
             .as_ref()
@@ -653,6 +655,36 @@ mod tests {
         let small = crate::linear::ordering::tests::grid(9, 7, 2);
         let f = CholeskyFactor::analyze_with(&small, params).unwrap();
         assert!(f.split().is_none(), "below the threshold: sequential");
+    }
+
+    /// The halves factorise only their own columns (split.rs, half.rs): the
+    /// split does about the plain factorisation's flops, not the separator's
+    /// dense block three times over, and its critical path is well below
+    /// the plain flops.
+    #[test]
+    fn the_split_adds_little_work_over_the_plain_factorisation() {
+        let p = crate::linear::ordering::tests::grid(100, 100, 2);
+        let params = CholeskyParams {
+            threads: ThreadPolicy::Split,
+            ..Default::default()
+        };
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let f = pool.install(|| CholeskyFactor::analyze_with(&p, params).unwrap());
+        let (k, critical) = f.split().expect("split");
+        let plain = CholeskyFactor::analyze(&p).unwrap().factor_flops();
+        let split = f.factor_flops();
+        let dense: f64 = (1..=k).map(|c| (c as f64).powi(2)).sum();
+        assert!(
+            split <= 1.05 * plain,
+            "split {split:e} vs plain {plain:e} (k = {k})"
+        );
+        assert!(
+            critical >= dense && critical <= 0.8 * plain,
+            "{critical:e} vs {plain:e}"
+        );
     }
 
     #[test]
