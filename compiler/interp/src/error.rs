@@ -89,8 +89,8 @@ pub enum LoadError {
         "`{path}` declares `fiber {direction}`: its fibre part ψ(I4, I5) cannot be evaluated here \
          (only the isotropic part would be, a different energy); `ecc eval --fiber` evaluates it, \
          and the library API is ecc_interp::fibre_from_module; a scene takes it as `[energy] psi` \
-         with a `[fibers]` section giving the directions; `ecc check` and the Python package's \
-         Energy do not take .psi fibre energies yet"
+         with a `[fibers]` section giving the directions; `ecc check` verifies both parts; the Python \
+         package's Energy does not take .psi fibre energies yet"
     )]
     FibrePart {
         /// The file name.

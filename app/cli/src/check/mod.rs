@@ -4,9 +4,14 @@
 //! random deformation gradients (see [`cases`]) against central differences
 //! and a numeric eigensolve (see [`compare`]), prints the worst error per
 //! case and per check, and fails (exit status 1) if any exceeds its tolerance.
+//! A file with `fiber a` is checked in two sections: its isotropic part
+//! Ψ_iso as above, and its fibre part ψ(I4, I5) at every hard case × fibre
+//! direction (see [`fibre_cases`], [`fibre`]); both count towards the verdict.
 
 mod cases;
 mod compare;
+mod fibre;
+mod fibre_cases;
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -21,7 +26,8 @@ use crate::input::parse_params;
 use crate::output::print_stdout;
 use crate::source::{Loaded, load};
 use compare::Errors;
-use ecc_runtime::{Dim, Space};
+use ecc_runtime::Space;
+use ecc_runtime::fibre::FibreDim;
 
 /// Tolerances (relative, see [`compare`]) for gradient, Hessian, eigenvalues, projection.
 ///
@@ -54,7 +60,7 @@ pub struct CheckArgs {
 /// Worst errors of one report row.
 #[derive(Default)]
 struct Row {
-    name: &'static str,
+    name: String,
     points: usize,
     worst: [Option<f64>; 4],
     /// Each distinct note with the number of points it applied to.
@@ -113,9 +119,76 @@ fn check_dim<const D: usize>(
     args: &CheckArgs,
 ) -> Result<(String, usize), CliError>
 where
-    Space<D>: Dim<D>,
+    Space<D>: FibreDim<D>,
 {
-    let energy = ecc_interp::energy_from_module::<D>(&loaded.module, &loaded.shown, params)?;
+    let module = &loaded.module;
+    let fibre = ecc_interp::fibre_from_module::<D>(module, &loaded.shown, params)?;
+    let energy = ecc_interp::iso_part_from_module::<D>(module, &loaded.shown, params)?;
+    let mut rng = ChaCha8Rng::seed_from_u64(args.seed ^ D as u64);
+    let (mut text, mut failed) = (String::new(), 0);
+    if fibre.is_none() || !ecc_interp::iso_part_is_zero(module, D) {
+        let rows = iso_rows::<D>(loaded, &energy, &mut rng, args.samples);
+        let path = match energy.path() {
+            IrPath::Invariant => "invariant",
+            IrPath::Stretch => "stretch",
+        };
+        let points: usize = rows.iter().map(|r| r.points).sum();
+        let title = format!(
+            "ecc check {} ({}D, {} path, {} points; relative errors, `-` = skipped, `!` = above tolerance)",
+            loaded.shown, D, path, points
+        );
+        let (t, f) = render(&title, 22, &rows);
+        text.push_str(&t);
+        failed += f;
+    }
+    if let Some(fib) = &fibre {
+        let mut rows: Vec<Row> = Vec::new();
+        for case in fibre_cases::fibre_cases::<D>(&mut rng, args.samples) {
+            let errors = fibre::compare_fibre::<D>(fib, &case.f, &case.a);
+            add_to(&mut rows, case.name, &errors);
+        }
+        let points: usize = rows.iter().map(|r| r.points).sum();
+        let zero_iso = if ecc_interp::iso_part_is_zero(module, D) {
+            "; isotropic part identically 0"
+        } else {
+            ""
+        };
+        let title = format!(
+            "ecc check {} ({}D) fibre part psi(I4, I5) ({} points{zero_iso}; relative errors, `-` = skipped, `!` = above tolerance)",
+            loaded.shown, D, points
+        );
+        let (t, f) = render(&title, 30, &rows);
+        text.push_str(&t);
+        failed += f;
+    }
+    Ok((text, failed))
+}
+
+/// Add one point's errors to the row called `name` (created on first use).
+fn add_to(rows: &mut Vec<Row>, name: String, errors: &Errors) {
+    match rows.iter_mut().find(|r| r.name == name) {
+        Some(r) => r.add(errors),
+        None => {
+            let mut r = Row {
+                name,
+                ..Row::default()
+            };
+            r.add(errors);
+            rows.push(r);
+        }
+    }
+}
+
+/// The isotropic rows: hard, random and plane cases.
+fn iso_rows<const D: usize>(
+    loaded: &Loaded,
+    energy: &ecc_interp::InterpEnergy<D>,
+    rng: &mut ChaCha8Rng,
+    samples: usize,
+) -> Vec<Row>
+where
+    Space<D>: FibreDim<D>,
+{
     let mut twists = [compare::Twist::Smooth; 3];
     if let Some(ir) = loaded.module.dim(D as u8) {
         for (k, kind) in ir.spectral.twist_kind.iter().enumerate().take(3) {
@@ -126,30 +199,14 @@ where
             };
         }
     }
-    let mut rng = ChaCha8Rng::seed_from_u64(args.seed ^ D as u64);
     let mut rows: Vec<Row> = Vec::new();
-    let mut all = cases::cases::<D>(&mut rng, args.samples);
-    all.extend(plane_cases::<D>(&mut rng));
+    let mut all = cases::cases::<D>(rng, samples);
+    all.extend(plane_cases::<D>(rng));
     for case in all {
-        let errors = compare::compare::<D>(&energy, &case.f, twists);
-        match rows.iter_mut().find(|r| r.name == case.name) {
-            Some(r) => r.add(&errors),
-            None => {
-                let mut r = Row {
-                    name: case.name,
-                    ..Row::default()
-                };
-                r.add(&errors);
-                rows.push(r);
-            }
-        }
+        let errors = compare::compare::<D>(energy, &case.f, twists);
+        add_to(&mut rows, case.name.to_string(), &errors);
     }
-    let path = match energy.path() {
-        IrPath::Invariant => "invariant",
-        IrPath::Stretch => "stretch",
-    };
-    let points: usize = rows.iter().map(|r| r.points).sum();
-    Ok(render(loaded, D, path, points, &rows))
+    rows
 }
 
 /// Row names of [`plane_cases`] by offset: exactly on the plane, then 1e-3…1e-12 off it.
@@ -215,16 +272,14 @@ fn cell(x: Option<f64>, tol: f64) -> String {
     }
 }
 
-fn render(loaded: &Loaded, dim: usize, path: &str, points: usize, rows: &[Row]) -> (String, usize) {
+/// The table under `title` with a `width`-wide case column; returns the
+/// text and the number of checks whose worst error fails.
+fn render(title: &str, width: usize, rows: &[Row]) -> (String, usize) {
     let mut s = String::new();
+    let _ = writeln!(s, "{title}");
     let _ = writeln!(
         s,
-        "ecc check {} ({}D, {} path, {} points; relative errors, `-` = skipped, `!` = above tolerance)",
-        loaded.shown, dim, path, points
-    );
-    let _ = writeln!(
-        s,
-        "{:<22}{:>12}{:>12}{:>12}{:>12}  note",
+        "{:<width$}{:>12}{:>12}{:>12}{:>12}  note",
         "case", CHECK_NAMES[0], CHECK_NAMES[1], CHECK_NAMES[2], CHECK_NAMES[3]
     );
     let mut worst = [None::<f64>; 4];
@@ -232,9 +287,9 @@ fn render(loaded: &Loaded, dim: usize, path: &str, points: usize, rows: &[Row]) 
         let label = if r.points > 1 {
             format!("{} ({})", r.name, r.points)
         } else {
-            r.name.to_string()
+            r.name.clone()
         };
-        let _ = write!(s, "{label:<22}");
+        let _ = write!(s, "{label:<width$}");
         for k in 0..4 {
             let _ = write!(s, "{}", cell(r.worst[k], TOLERANCES[k]));
             if let Some(v) = r.worst[k] {
@@ -255,7 +310,7 @@ fn render(loaded: &Loaded, dim: usize, path: &str, points: usize, rows: &[Row]) 
             .collect();
         let _ = writeln!(s, "  {}", notes.join("; "));
     }
-    let _ = write!(s, "{:<22}", "worst");
+    let _ = write!(s, "{:<width$}", "worst");
     let mut failed = 0;
     for k in 0..4 {
         let _ = write!(s, "{}", cell(worst[k], TOLERANCES[k]));
@@ -264,7 +319,7 @@ fn render(loaded: &Loaded, dim: usize, path: &str, points: usize, rows: &[Row]) 
         }
     }
     let _ = writeln!(s);
-    let _ = write!(s, "{:<22}", "tolerance");
+    let _ = write!(s, "{:<width$}", "tolerance");
     for t in TOLERANCES {
         let _ = write!(s, "{t:>12.0e}");
     }
