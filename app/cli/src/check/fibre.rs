@@ -22,7 +22,7 @@
 //! Any NaN (ψ, gradient, raw or clamped Hessian, ψ's partials at a finite
 //! ψ) is an infinite error, and so is ψ = −∞ (an energy is +∞ outside its
 //! domain, never −∞). Skips, each with a note:
-//! * ψ = +∞: outside ψ's domain;
+//! * ψ = +∞: outside ψ's domain (or an overflow, e.g. a Fung exponential at σ = 1e3);
 //! * ψ(I4, I5) jumps at the point (e.g. sign(I4) at I4 = 0): no derivative
 //!   exists, differences are skipped (the runtime's values must be finite);
 //! * ψ's first or second partials are infinite at a finite ψ (√I5 or log I5
@@ -214,7 +214,7 @@ where
     }
     if raw.psi == f64::INFINITY {
         return Errors {
-            note: Some("outside the domain (psi = +inf)"),
+            note: Some("psi = +inf (outside the domain, or overflow)"),
             ..Errors::default()
         };
     }
