@@ -34,7 +34,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::elastic::{Elastic, Projection, Tri};
 use crate::error::FemError;
-use crate::newton::params::NewtonParams;
+use crate::newton::params::{FilterPolicy, NewtonParams};
 use crate::newton::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
 use crate::newton::solver::NewtonSolver;
 use crate::quality::{count_flipped, tri_signed_area};
@@ -50,6 +50,11 @@ pub struct ParamOptions {
     /// Weights of the Tutte start.
     pub tutte: TutteWeights,
     /// Newton parameters (`energy_scale` is overwritten when `mean_energy`).
+    /// Default: [`NewtonParams::default`] with the filter policy
+    /// [`FilterPolicy::TrustRegionNewton`] (the configured filter while the
+    /// quadratic model is not trusted, the raw Hessian once it is; fewer
+    /// iterations on every measured parameterisation,
+    /// `docs/benchmarks/projection.md`).
     pub newton: NewtonParams,
     /// How the element Hessians are projected (see [`Projection`]).
     pub projection: Projection,
@@ -61,7 +66,10 @@ impl Default for ParamOptions {
             normalize_area: true,
             mean_energy: true,
             tutte: TutteWeights::Uniform,
-            newton: NewtonParams::default(),
+            newton: NewtonParams {
+                filter_policy: FilterPolicy::TrustRegionNewton,
+                ..NewtonParams::default()
+            },
             projection: Projection::default(),
         }
     }

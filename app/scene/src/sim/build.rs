@@ -32,7 +32,9 @@ use crate::counters::{Counter, Counters};
 use crate::dynamics::Dynamics;
 use crate::error::SceneError;
 use crate::handles::{Handle, build_handle, vector};
-use crate::spec::{FilterKind, GroundKind, LinearKind, ProjectionKind, SceneFile, SolverSpec};
+use crate::spec::{
+    FilterKind, FilterPolicyKind, GroundKind, LinearKind, ProjectionKind, SceneFile, SolverSpec,
+};
 use crate::terms::{
     Blend, Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping, vertex_masses,
 };
@@ -46,7 +48,31 @@ use crate::terms::{
 /// converge exits non-zero (`ecc sim`).
 pub const DEFAULT_MAX_ITERS: usize = 500;
 
-/// Newton parameters from `[solver]` with the objective scaled by `scale`.
+/// Newton parameters of a parameterisation (`[effects.parameterize]`):
+/// [`newton_params`] with the filter policy defaulting to
+/// [`FilterPolicy::TrustRegionNewton`] (fewer iterations on every measured
+/// parameterisation, docs/benchmarks/projection.md).
+pub fn param_newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
+    NewtonParams {
+        filter_policy: filter_policy(s, FilterPolicy::TrustRegionNewton),
+        ..newton_params(s, scale)
+    }
+}
+
+/// The filter policy of `[solver]`: `filter_policy` when given, else
+/// trust-region for `filter = "adaptive"`, else `default`.
+pub fn filter_policy(s: &SolverSpec, default: FilterPolicy) -> FilterPolicy {
+    match (s.filter_policy, s.filter) {
+        (Some(FilterPolicyKind::Fixed), _) => FilterPolicy::Fixed,
+        (Some(FilterPolicyKind::TrustRegion), _) => FilterPolicy::TrustRegion,
+        (Some(FilterPolicyKind::TrustRegionNewton), _) => FilterPolicy::TrustRegionNewton,
+        (None, FilterKind::Adaptive) => FilterPolicy::TrustRegion,
+        (None, _) => default,
+    }
+}
+
+/// Newton parameters from `[solver]` with the objective scaled by `scale`
+/// (deformation scenes: the filter policy defaults to the fixed filter).
 pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
     NewtonParams {
         tol_abs: s.tol.unwrap_or(1e-4),
@@ -56,11 +82,7 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
             FilterKind::Abs => Filter::Abs,
             _ => Filter::Clamp,
         },
-        filter_policy: if s.filter == FilterKind::Adaptive {
-            FilterPolicy::TrustRegion
-        } else {
-            FilterPolicy::Fixed
-        },
+        filter_policy: filter_policy(s, FilterPolicy::Fixed),
         linear_solver: match s.linear {
             LinearKind::Auto => LinearSolver::Auto,
             LinearKind::Cholesky => LinearSolver::Cholesky,

@@ -15,7 +15,7 @@ use ecc_fem::{FemError, NewtonResult, NewtonStatus, Term};
 use ecc_mesh::{TriMesh, TutteWeights};
 use ecc_runtime::Energy;
 
-use super::build::{newton_params, projection};
+use super::build::{param_newton_params, projection};
 use super::context::{Context, FinalState, RunReport, energy_stats, finish, term_stats};
 use super::journal::status_name;
 use super::observer::{INTERRUPTED, Observer};
@@ -91,7 +91,7 @@ fn problem(
             Some(TutteKind::MeanValue) => TutteWeights::MeanValue,
             _ => TutteWeights::Uniform,
         },
-        newton: newton_params(&scene.solver, 1.0),
+        newton: param_newton_params(&scene.solver, 1.0),
         projection: projection(&scene.solver),
     };
     let key = if scene.mesh.file.is_some() {

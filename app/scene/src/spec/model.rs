@@ -350,6 +350,20 @@ pub enum FilterKind {
     Adaptive,
 }
 
+/// Per-iteration filter policy (`ecc_fem::FilterPolicy`), `[solver] filter_policy`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FilterPolicyKind {
+    /// Always `filter` (the deformation scenes' default).
+    Fixed,
+    /// Chen et al. 2024: clamp when the model is trusted, abs otherwise
+    /// (what `filter = "adaptive"` selects).
+    TrustRegion,
+    /// `filter` while the model is not trusted, the raw Hessian once it is
+    /// (the parameterisation default; docs/benchmarks/projection.md).
+    TrustRegionNewton,
+}
+
 /// Linear solver choice.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -398,6 +412,13 @@ pub struct SolverSpec {
     /// `clamp` (default), `abs` or `adaptive`.
     #[serde(default)]
     pub filter: FilterKind,
+    /// How the filter is chosen per iteration: `fixed`, `trust-region` or
+    /// `trust-region-newton` (with `filter` = clamp/abs as the untrusted
+    /// filter). Default: `trust-region-newton` for `[effects.parameterize]`,
+    /// `fixed` otherwise; `trust-region` when `filter = "adaptive"` (which
+    /// conflicts with any other value).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub filter_policy: Option<FilterPolicyKind>,
     /// `auto` (default), `cholesky` or `pcg`.
     #[serde(default)]
     pub linear: LinearKind,

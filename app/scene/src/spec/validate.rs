@@ -358,6 +358,15 @@ fn check_solver(s: &SolverSpec) -> R {
         return Err(bad("solver.tol_rel", format!("must be in [0, 1), got {r}")));
     }
     at_least_one("solver.max_iters", s.max_iters)?;
+    if s.filter == FilterKind::Adaptive
+        && s.filter_policy
+            .is_some_and(|p| p != FilterPolicyKind::TrustRegion)
+    {
+        return Err(bad(
+            "solver.filter_policy",
+            "filter = \"adaptive\" is the trust-region policy: use filter_policy = \"trust-region\" or filter = \"clamp\"/\"abs\"",
+        ));
+    }
     count("solver.substeps", s.substeps)
 }
 
