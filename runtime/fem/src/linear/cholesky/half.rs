@@ -66,6 +66,14 @@ struct Node {
     val: usize,
 }
 
+/// Scratch of [`Half::update_from`]: the product of a large update and
+/// the target row of each updating row.
+#[derive(Default)]
+struct Scratch {
+    temp: Vec<f64>,
+    map: Vec<usize>,
+}
+
 /// Bᵢ = A[Pᵢ∪S, Pᵢ∪S]: structure, factor values of its Pᵢ columns and the
 /// separator update Uᵢ of (8).
 pub(super) struct Half {
@@ -90,8 +98,8 @@ pub(super) struct Half {
     pub(super) update: Vec<f64>,
     /// Row of a supernode's block holding each local row (scratch).
     rel: Vec<usize>,
-    /// Product of a large descendant update (scratch).
-    temp: Vec<f64>,
+    /// Scratch of the descendant updates.
+    scratch: Scratch,
     mem: MemBuffer,
     /// The solve vector: [yᵢ; −L_Si yᵢ] after [`Half::forward`], [xᵢ; x_S]
     /// after [`Half::backward`].
@@ -246,7 +254,7 @@ impl Half {
             l: zeros(len, "a split factor")?,
             update: zeros(k * k, "the separator block")?,
             rel: vec![0; n],
-            temp: Vec::new(),
+            scratch: Scratch::default(),
             mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
             work: zeros(n, "the solve")?,
             flops,
@@ -271,13 +279,13 @@ impl Half {
         }
         let (k, n_p, n) = (self.k(), self.n_p, self.unknowns.len());
         let mut update = std::mem::take(&mut self.update);
-        let mut temp = std::mem::take(&mut self.temp);
+        let mut scratch = std::mem::take(&mut self.scratch);
         update.fill(0.0);
         let s = self.nodes.len();
         for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
-            self.update_from(&mut temp, d, &self.l, &mut update, k, n_p..n);
+            self.update_from(&mut scratch, d, &self.l, &mut update, k, n_p..n);
         }
-        (self.update, self.temp) = (update, temp);
+        (self.update, self.scratch) = (update, scratch);
         Ok(())
     }
 
@@ -295,7 +303,7 @@ impl Half {
             self.rel[r] = w + i;
         }
         let mut l = std::mem::take(&mut self.l);
-        let mut temp = std::mem::take(&mut self.temp);
+        let mut scratch = std::mem::take(&mut self.scratch);
         let (head, tail) = l.split_at_mut(val);
         let ls = &mut tail[..m * w];
         ls.fill(0.0);
@@ -308,10 +316,10 @@ impl Half {
             }
         }
         for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
-            self.update_from(&mut temp, d, head, ls, m, start..end);
+            self.update_from(&mut scratch, d, head, ls, m, start..end);
         }
         let result = dense_node(ls, m, w, MemStack::new(&mut self.mem));
-        (self.l, self.temp) = (l, temp);
+        (self.l, self.scratch) = (l, scratch);
         result.map_err(|index| start + index)
     }
 
@@ -320,7 +328,7 @@ impl Half {
     /// (rows at or beyond `cols.end` through `rel`); `l` holds node `d`.
     fn update_from(
         &self,
-        temp: &mut Vec<f64>,
+        scratch: &mut Scratch,
         d: usize,
         l: &[f64],
         target: &mut [f64],
@@ -343,14 +351,19 @@ impl Half {
                 self.rel[row]
             }
         };
+        let Scratch { temp, map } = scratch;
+        map.clear();
+        map.extend((0..nb).map(at));
         if nb * nm * wd <= SMALL_UPDATE {
+            // column by column of the product: axpys of L_d's columns
             for c in 0..nm {
                 let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
-                for r in c..nb {
-                    let dot: f64 = (0..wd)
-                        .map(|q| ld[q * md + wd + p0 + r] * ld[q * md + wd + p0 + c])
-                        .sum();
-                    col[at(r)] -= dot;
+                for q in 0..wd {
+                    let lq = &ld[q * md + wd + p0..][..nb];
+                    let lc = lq[c];
+                    for (&to, l) in map[c..].iter().zip(&lq[c..]) {
+                        col[to] -= l * lc;
+                    }
                 }
             }
             return;
@@ -365,8 +378,8 @@ impl Half {
         matmul(t, Accum::Replace, below, mid.transpose(), 1.0, Par::Seq);
         for c in 0..nm {
             let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
-            for r in c..nb {
-                col[at(r)] -= temp[c * nb + r];
+            for (&to, t) in map[c..].iter().zip(&temp[c * nb + c..(c + 1) * nb]) {
+                col[to] -= t;
             }
         }
     }
