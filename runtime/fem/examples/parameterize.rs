@@ -1,7 +1,8 @@
 //! Symmetric Dirichlet parameterisation of a disk-topology mesh, printing the
-//! per-iteration records and a JSON summary.
+//! per-iteration records and a JSON summary (default filter policy: trust-region
+//! Newton, `ParamOptions::default`; `fixed` gives the paper's fixed clamp).
 //!
-//! `cargo run --release -p ecc-fem --example parameterize -- MESH [uniform|mean-value] [cholesky|pcg|auto] [adaptive|newton|raw|abs]`
+//! `cargo run --release -p ecc-fem --example parameterize -- MESH [uniform|mean-value] [cholesky|pcg|auto] [fixed|adaptive|newton|raw|abs]`
 
 use std::sync::Arc;
 
@@ -14,7 +15,7 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let Some(path) = args.first() else {
         eprintln!(
-            "usage: parameterize MESH [uniform|mean-value] [cholesky|pcg|auto] [adaptive|newton|raw|abs]"
+            "usage: parameterize MESH [uniform|mean-value] [cholesky|pcg|auto] [fixed|adaptive|newton|raw|abs]"
         );
         std::process::exit(2);
     };
@@ -26,6 +27,7 @@ fn main() {
             "cholesky" => opts.newton.linear_solver = LinearSolver::Cholesky,
             "pcg" => opts.newton.linear_solver = LinearSolver::Pcg,
             "auto" => opts.newton.linear_solver = LinearSolver::Auto,
+            "fixed" => opts.newton.filter_policy = ecc_fem::FilterPolicy::Fixed,
             "adaptive" => opts.newton.filter_policy = ecc_fem::FilterPolicy::TrustRegion,
             "newton" => opts.newton.filter_policy = ecc_fem::FilterPolicy::TrustRegionNewton,
             "raw" => opts.newton.filter = ecc_fem::Filter::None,
