@@ -17,7 +17,9 @@
 //! domain condition; the closed-form eigensystem of I5 applies when
 //! ψ4 ≡ ψ44 ≡ ψ45 ≡ 0 (Kim, de Goes & Iben 2019 §4.1 eq. 7 through the chain
 //! rule; `ecc_runtime::fibre::point`, eqs. P3–P5), e.g. anisotropic ARAP
-//! μ/2 (√I5 − sign(I4))².
+//! μ/2 (√I5 − sign(I4))². The partials' negative powers of I5 and I4 are
+//! collected (`poles`, eq. P2) so a pole at I5 = 0 or I4 = 0 evaluates to
+//! ±∞, not ∞ − ∞ = NaN.
 
 use crate::cas::{Graph, Id, Node, Sym};
 use crate::diag::Error;
@@ -200,6 +202,10 @@ pub fn build(g: &mut Graph, psi: Id, guards: Vec<DomainGuard>, direction: &str) 
     let d44 = g.diff(d4, Sym::I4);
     let d45 = g.diff(d4, Sym::I5);
     let d55 = g.diff(d5, Sym::I5);
+    // Poles collected (eq. P2 of `poles`): ∞ − ∞ at I5 = 0 becomes ±∞.
+    let mut memo = std::collections::HashMap::new();
+    let [d4, d5, d44, d45, d55] =
+        [d4, d5, d44, d45, d55].map(|d| super::poles::factor(g, d, &mut memo));
     let mut roots = vec![psi, d4, d5, d44, d45, d55];
     roots.extend(guards.iter().map(|d| d.arg));
     let (graph, new) = g.extract(&roots);

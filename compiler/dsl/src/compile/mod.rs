@@ -6,6 +6,7 @@ mod derivs;
 mod dim;
 mod domain;
 mod fibre;
+mod poles;
 
 pub use checks::Rng;
 pub use cost::{cost, cost_many};
