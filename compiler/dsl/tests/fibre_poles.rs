@@ -128,3 +128,28 @@ fn only_mixed_negative_powers_are_collected() {
     assert_eq!(text("fibre_stvk", 2), "mu*(I5 - 1)");
     assert_eq!(text("fibre_stvk", 5), "mu");
 }
+
+/// A user pole in I4 with odd-denominator powers (defined for I4 < 0):
+/// ψ = (∛I4 + 1)², ψ44 = (2/9) I4^{-4/3} − (4/9)(∛I4 + 1) I4^{-5/3} is
+/// ∞ − ∞ at I4 = 0 unless collected; collected it is −∞ (the limit
+/// −(4/9) I4^{-5/3} from above), and it equals the plain derivative at
+/// negative and positive I4.
+#[test]
+fn i4_poles_with_odd_roots_are_collected_on_both_sides() {
+    let ir = compile_dim("fiber a\npsi = (I4^(1/3) + 1)^2", "t", 3).unwrap();
+    let f = ir.fibre.unwrap();
+    let [.., d44, _, _] = partials(&f, &[], 0.0, 1.0);
+    assert_eq!(d44, f64::NEG_INFINITY);
+    let mut g = f.graph.clone();
+    let d4 = g.diff(f.psi, Sym::I4);
+    let plain = g.diff(d4, Sym::I4);
+    for i4 in [-2.0, -0.3, -1e-6, 1e-6, 0.3, 2.0] {
+        let [.., got, _, _] = partials(&f, &[], i4, 1.0);
+        let env = Env::new(3, &[], &[]).with_fibre(i4, 1.0);
+        let want = eval(&g, plain, &env);
+        assert!(
+            (got - want).abs() <= 1e-12 * want.abs(),
+            "{i4}: {got} vs {want}"
+        );
+    }
+}
