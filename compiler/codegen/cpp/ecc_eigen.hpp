@@ -23,6 +23,25 @@ inline void to_array(const Eigen::Matrix<double, D, D>& m, double (&a)[D][D]) {
         for (int j = 0; j < D; ++j) a[i][j] = m(i, j);
 }
 
+/// ψ, gradient and Hessian of a runtime result (N entries) into its Eigen twin.
+template <int N, class R, class Out>
+inline void copy_result(const R& r, Out& out) {
+    out.psi = r.psi;
+    for (int i = 0; i < N; ++i) {
+        out.grad(i) = r.grad[i];
+        for (int j = 0; j < N; ++j) out.hess(i, j) = r.hess[i][j];
+    }
+}
+
+/// F = Ds Dm⁻¹ of a linear element, Ds = [x1 − x0, …] (one column per node).
+template <int D>
+inline Eigen::Matrix<double, D, D> element_f(const Eigen::Matrix<double, D, D + 1>& x,
+                                             const Eigen::Matrix<double, D, D>& dm_inv) {
+    Eigen::Matrix<double, D, D> ds;
+    for (int k = 0; k < D; ++k) ds.col(k) = x.col(k + 1) - x.col(0);
+    return ds * dm_inv;
+}
+
 /// Ψ, vec(∂Ψ/∂F) (column-major, as Eigen's own storage) and the filtered Hessian.
 template <int D>
 struct PointEvalE {
@@ -39,11 +58,7 @@ inline PointEvalE<D> eval(const E& energy, const Eigen::Matrix<double, D, D>& F,
     to_array<D>(F, a);
     PointEval<D> r = eval_f<D>(energy, a, filter);
     PointEvalE<D> out;
-    out.psi = r.psi;
-    for (int i = 0; i < D * D; ++i) {
-        out.grad(i) = r.grad[i];
-        for (int j = 0; j < D * D; ++j) out.hess(i, j) = r.hess[i][j];
-    }
+    copy_result<D * D>(r, out);
     return out;
 }
 
@@ -61,20 +76,13 @@ inline ElementEvalE<D> eval_element(const E& energy, const Eigen::Matrix<double,
                                     const Eigen::Matrix<double, D, D>& dm_inv, double measure,
                                     Filter filter = Filter::clamp(), bool want_hessian = true) {
     constexpr int N = D * (D + 1);
-    // F = Ds Dm⁻¹ with Ds = [x1 − x0, …].
-    Eigen::Matrix<double, D, D> ds;
-    for (int k = 0; k < D; ++k) ds.col(k) = x.col(k + 1) - x.col(0);
-    const Eigen::Matrix<double, D, D> fm = ds * dm_inv;
+    const Eigen::Matrix<double, D, D> fm = element_f<D>(x, dm_inv);
     double f[D][D], di[D][D];
     to_array<D>(fm, f);
     to_array<D>(dm_inv, di);
     ElementEval<N> r = eval_element_f<D>(energy, f, di, measure, filter, want_hessian);
     ElementEvalE<D> out;
-    out.psi = r.psi;
-    for (int i = 0; i < N; ++i) {
-        out.grad(i) = r.grad[i];
-        for (int j = 0; j < N; ++j) out.hess(i, j) = r.hess[i][j];
-    }
+    copy_result<N>(r, out);
     return out;
 }
 
@@ -100,14 +108,10 @@ inline FibreEvalE<D> fibre_eval(const E& energy, const Eigen::Matrix<double, D, 
     for (int i = 0; i < D; ++i) av[i] = a(i);
     FibreEval<D> r = fibre_eval_f<D>(energy, fa, av, filter);
     FibreEvalE<D> out;
-    out.psi = r.psi;
+    copy_result<D * D>(r, out);
     out.i4 = r.i4;
     out.i5 = r.i5;
     out.path = r.path;
-    for (int i = 0; i < D * D; ++i) {
-        out.grad(i) = r.grad[i];
-        for (int j = 0; j < D * D; ++j) out.hess(i, j) = r.hess[i][j];
-    }
     return out;
 }
 
@@ -118,20 +122,14 @@ inline ElementEvalE<D> fibre_eval_element(const E& energy, const Eigen::Matrix<d
                                           const Eigen::Matrix<double, D, 1>& a,
                                           Filter filter = Filter::clamp(), bool want_hessian = true) {
     constexpr int N = D * (D + 1);
-    Eigen::Matrix<double, D, D> ds;
-    for (int k = 0; k < D; ++k) ds.col(k) = x.col(k + 1) - x.col(0);
-    const Eigen::Matrix<double, D, D> fm = ds * dm_inv;
+    const Eigen::Matrix<double, D, D> fm = element_f<D>(x, dm_inv);
     double f[D][D], di[D][D], av[D];
     to_array<D>(fm, f);
     to_array<D>(dm_inv, di);
     for (int i = 0; i < D; ++i) av[i] = a(i);
     ElementEval<N> r = fibre_eval_element_f<D>(energy, f, di, measure, av, filter, want_hessian);
     ElementEvalE<D> out;
-    out.psi = r.psi;
-    for (int i = 0; i < N; ++i) {
-        out.grad(i) = r.grad[i];
-        for (int j = 0; j < N; ++j) out.hess(i, j) = r.hess[i][j];
-    }
+    copy_result<N>(r, out);
     return out;
 }
 
