@@ -52,17 +52,6 @@ fn a_type_name_cpp_cannot_use_is_refused() {
 
 /// Ψ, gradient, raw and clamped Hessian of the energy at F from the emitted header.
 fn cpp_numbers(stem: &str, dim: usize, f: &[f64]) -> Vec<f64> {
-    let dir = tempfile::tempdir().unwrap();
-    let hpp = dir.path().join("energy.hpp");
-    ok(&[
-        &lib(stem),
-        "--emit",
-        "cpp",
-        "--name",
-        "E",
-        "-o",
-        hpp.to_str().unwrap(),
-    ]);
     let vals: Vec<String> = f.iter().map(|v| format!("{v:e}")).collect();
     let main = format!(
         r#"#include "energy.hpp"
@@ -82,6 +71,24 @@ int main() {{
 "#,
         vals = vals.join(", ")
     );
+    emit_and_run(stem, &main)
+}
+
+/// The numbers (one per line) printed by `main`, a C++ program compiled
+/// with g++ -Wall -Wextra -Werror against the header `ecc` emits for `stem`
+/// as `energy.hpp` (struct `E`).
+fn emit_and_run(stem: &str, main: &str) -> Vec<f64> {
+    let dir = tempfile::tempdir().unwrap();
+    let hpp = dir.path().join("energy.hpp");
+    ok(&[
+        &lib(stem),
+        "--emit",
+        "cpp",
+        "--name",
+        "E",
+        "-o",
+        hpp.to_str().unwrap(),
+    ]);
     let src = dir.path().join("main.cpp");
     std::fs::write(&src, main).unwrap();
     let exe = dir.path().join("main");
@@ -92,13 +99,29 @@ int main() {{
         .arg(&exe)
         .output()
         .expect("g++ runs (.ci/run installs it)");
-    assert!(c.status.success(), "{}", String::from_utf8_lossy(&c.stderr));
+    assert!(
+        c.status.success(),
+        "{stem}: {}",
+        String::from_utf8_lossy(&c.stderr)
+    );
     let out = Command::new(&exe).output().unwrap();
     String::from_utf8(out.stdout)
         .unwrap()
         .lines()
         .map(|l| l.parse().unwrap())
         .collect()
+}
+
+/// Every value of the C++ output within 1e-10 × the largest of `ecc eval`'s.
+fn assert_agree(stem: &str, got: &[f64], want: &[f64]) {
+    assert_eq!(got.len(), want.len(), "{stem}");
+    let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    for (k, (a, b)) in got.iter().zip(want).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-10 * scale,
+            "{stem} value {k}: C++ {a}, ecc eval {b}"
+        );
+    }
 }
 
 fn json_numbers(stem: &str, dim: usize, f: &[f64]) -> Vec<f64> {
@@ -155,14 +178,7 @@ fn emitted_header_agrees_with_ecc_eval() {
     for (stem, dim, f) in cases {
         let got = cpp_numbers(stem, dim, &f);
         let want = json_numbers(stem, dim, &f);
-        assert_eq!(got.len(), want.len(), "{stem}");
-        let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for (k, (a, b)) in got.iter().zip(&want).enumerate() {
-            assert!(
-                (a - b).abs() <= 1e-10 * scale,
-                "{stem} value {k}: C++ {a}, ecc eval {b}"
-            );
-        }
+        assert_agree(stem, &got, &want);
     }
 }
 
@@ -232,17 +248,6 @@ fn fibre_energies_emit_and_agree_with_ecc_eval() {
     let f = [1.2, 0.1, 0.0, 0.0, 0.9, 0.1, 0.05, 0.0, 1.1];
     let dir_a = [1.0, 0.5, 0.2];
     for stem in ["fibre_stvk", "fibre_arap"] {
-        let dir = tempfile::tempdir().unwrap();
-        let hpp = dir.path().join("energy.hpp");
-        ok(&[
-            &lib(stem),
-            "--emit",
-            "cpp",
-            "--name",
-            "E",
-            "-o",
-            hpp.to_str().unwrap(),
-        ]);
         let main = format!(
             r#"#include "energy.hpp"
 #include <cmath>
@@ -265,27 +270,7 @@ int main() {{
             f = f.map(|x| x.to_string()).join(", "),
             a = dir_a.map(|x| x.to_string()).join(", "),
         );
-        let src = dir.path().join("main.cpp");
-        std::fs::write(&src, main).unwrap();
-        let exe = dir.path().join("main");
-        let c = Command::new("g++")
-            .args(["-std=c++17", "-O2", "-Wall", "-Wextra", "-Werror"])
-            .arg(&src)
-            .arg("-o")
-            .arg(&exe)
-            .output()
-            .expect("g++ runs (.ci/run installs it)");
-        assert!(
-            c.status.success(),
-            "{stem}: {}",
-            String::from_utf8_lossy(&c.stderr)
-        );
-        let out = Command::new(&exe).output().unwrap();
-        let got: Vec<f64> = String::from_utf8(out.stdout)
-            .unwrap()
-            .lines()
-            .map(|l| l.parse().unwrap())
-            .collect();
+        let got = emit_and_run(stem, &main);
         let text = ok(&[
             "eval",
             &lib(stem),
@@ -303,13 +288,6 @@ int main() {{
         let mut want = vec![num(&fib["psi"]), num(&fib["I5"])];
         want.extend(fib["gradient"].as_array().unwrap().iter().map(num));
         want.push(fib["eigenvalues"].as_array().unwrap().iter().map(num).sum());
-        assert_eq!(got.len(), want.len(), "{stem}");
-        let scale = want.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        for (k, (a, b)) in got.iter().zip(&want).enumerate() {
-            assert!(
-                (a - b).abs() <= 1e-10 * scale,
-                "{stem} value {k}: C++ {a}, ecc eval {b}"
-            );
-        }
+        assert_agree(stem, &got, &want);
     }
 }
