@@ -17,7 +17,7 @@
 
 mod cpp_common;
 
-use cpp_common::{Case, close, compile, compilers, nodes_of, nums, rotation, run};
+use cpp_common::{Case, compare_block, compile, compilers, nodes_of, nums, rotation, run};
 use ecc_codegen::{CppOptions, generate_cpp};
 use ecc_runtime::fibre::{
     FibreDim, FibrePath, fibre_element_eval, fibre_f, invariant4, invariant5,
@@ -382,16 +382,7 @@ fn compare(got: &[f64], want: &[f64], d: usize) -> Result<f64, String> {
         } else if is_hess {
             scale = scale.max(raw_scale);
         }
-        for (k, (&a, &b)) in g.iter().zip(w).enumerate() {
-            if !close(a, b, TOL, scale) {
-                return Err(format!(
-                    "{name}[{k}]: C++ {a:e}, Rust {b:e} (scale {scale:e})"
-                ));
-            }
-            if a.is_finite() && scale > 0.0 {
-                worst = worst.max((a - b).abs() / scale);
-            }
-        }
+        compare_block(&name, g, w, TOL, scale, &mut worst)?;
         at += len;
     }
     Ok(worst)

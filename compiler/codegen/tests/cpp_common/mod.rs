@@ -226,19 +226,33 @@ pub fn compare(
             .iter()
             .filter(|x| x.is_finite())
             .fold(0.0f64, |m, x| m.max(x.abs()));
-        for (k, (&a, &b)) in g.iter().zip(w).enumerate() {
-            if !close(a, b, tol, scale) {
-                return Err(format!(
-                    "{name}[{k}]: C++ {a:e}, Rust {b:e} (scale {scale:e})"
-                ));
-            }
-            if a.is_finite() && scale > 0.0 {
-                worst = worst.max((a - b).abs() / scale);
-            }
-        }
+        compare_block(name, g, w, tol, scale, &mut worst)?;
         at += len;
     }
     Ok(worst)
+}
+
+/// One block: every C++ value `close` to Rust's relative to `scale`;
+/// `worst` grows to the largest finite relative difference.
+pub fn compare_block(
+    name: &str,
+    got: &[f64],
+    want: &[f64],
+    tol: f64,
+    scale: f64,
+    worst: &mut f64,
+) -> Result<(), String> {
+    for (k, (&a, &b)) in got.iter().zip(want).enumerate() {
+        if !close(a, b, tol, scale) {
+            return Err(format!(
+                "{name}[{k}]: C++ {a:e}, Rust {b:e} (scale {scale:e})"
+            ));
+        }
+        if a.is_finite() && scale > 0.0 {
+            *worst = worst.max((a - b).abs() / scale);
+        }
+    }
+    Ok(())
 }
 
 /// The block layout of one answer line in dimension `d`.
