@@ -32,6 +32,16 @@ mod tree;
 
 pub use threads::{REPROBE_EVERY, ThreadPolicy};
 
+/// [`ecc_util::clear_upper_simd`] on this thread and, when faer's kernels
+/// ran on rayon's workers (`pool`), on every worker of the pool: the threads
+/// that assemble the next Hessian.
+fn clear_simd(pool: bool) {
+    ecc_util::clear_upper_simd();
+    if pool && rayon::current_num_threads() > 1 {
+        rayon::broadcast(|_| ecc_util::clear_upper_simd());
+    }
+}
+
 /// [`ThreadPolicy::Split`] splits a factorisation whose estimated flops
 /// ([`CholeskyFactor::factor_flops`] of the plain analysis) reach this; below,
 /// the two-thread overhead (the separator's dense block, joins) does not pay
@@ -357,7 +367,9 @@ impl CholeskyFactor {
         self.numeric_factorizations += 1;
         self.factored = false;
         if let Some(split) = &mut self.split {
-            split.factorize(values).map_err(|p| {
+            let result = split.factorize(values);
+            clear_simd(true);
+            result.map_err(|p| {
                 FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot: p.0 })
             })?;
             self.factored = true;
@@ -372,7 +384,7 @@ impl CholeskyFactor {
         let stack = MemStack::new(&mut self.mem);
         self.par = self.threads.next();
         let start = Instant::now();
-        match self.symbolic.factorize_numeric_llt::<f64>(
+        let result = self.symbolic.factorize_numeric_llt::<f64>(
             &mut self.l_values,
             a,
             Side::Upper,
@@ -380,7 +392,9 @@ impl CholeskyFactor {
             self.par,
             stack,
             Default::default(),
-        ) {
+        );
+        clear_simd(!matches!(self.par, Par::Seq));
+        match result {
             Ok(_) => {
                 self.threads.record(self.par, start.elapsed().as_secs_f64());
                 self.factored = true;
@@ -402,6 +416,7 @@ impl CholeskyFactor {
         }
         if let Some(split) = &mut self.split {
             split.solve_in_place(rhs);
+            clear_simd(true);
             return true;
         }
         let n = rhs.len();
@@ -413,6 +428,7 @@ impl CholeskyFactor {
             self.par,
             stack,
         );
+        clear_simd(!matches!(self.par, Par::Seq));
         true
     }
 }

@@ -226,6 +226,8 @@ pub(super) fn solve_cholesky(sys: &mut System, pos: &[[f64; 3]]) -> Result<bool,
             MemStack::new(&mut mem),
         );
     }
+    // faer's kernels may leave AVX state dirty on this thread (ecc_util::simd)
+    ecc_util::clear_upper_simd();
     Ok(ok)
 }
 
