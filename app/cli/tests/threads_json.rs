@@ -30,7 +30,7 @@ fn sim_json(solver: &str, name: &str, threads: &str, dir: &std::path::Path) -> s
 fn sim_json_reports_the_thread_policy_and_ordering() {
     let dir = tempfile::tempdir().unwrap();
     let s = sim_json("", "default", "1", dir.path());
-    assert_eq!(s["linear"]["threads"], "sequential", "{}", s["linear"]);
+    assert_eq!(s["linear"]["threads"], "split", "{}", s["linear"]);
     assert_eq!(s["linear"]["ordering"], "block-amd", "{}", s["linear"]);
     assert_eq!(s["linear"]["split"], false, "{}", s["linear"]);
     for (policy, ordering) in [("split", "amd"), ("parallel", "block-amd")] {

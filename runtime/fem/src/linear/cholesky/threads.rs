@@ -1,18 +1,22 @@
-//! Whether a numeric factorisation runs on one thread or on rayon's pool.
+//! Whether a numeric factorisation runs on one thread, on rayon's pool, or
+//! as two halves of a separator on two threads.
 //!
 //! faer's supernodal LLᵀ walks the supernodes one after the other and hands
 //! its `Par` to the dense kernels of each supernode (the update products, the
 //! dense Cholesky of the diagonal block, the triangular solve). On mesh
 //! matrices most supernodes are a few columns wide, so with two threads the
-//! time goes into fork/join and waking the other worker per kernel, and the
-//! factorisation was slower than on one thread on every mesh measured, 2D and
-//! 3D, AMD and METIS, up to a 1M-triangle disk (docs/benchmarks/ordering.md).
-//! The default is therefore [`ThreadPolicy::Sequential`]: two threads are
-//! never slower than one because the factorisation does not use the second
-//! (assembly still does). It is also reproducible: on factors with wide
-//! supernodes (hand.mesh) the parallel kernels round differently from the
-//! sequential ones, so a policy that switches between them changes the
-//! Newton trajectory from run to run.
+//! time goes into fork/join and waking the other worker per kernel, and
+//! [`ThreadPolicy::Parallel`] was slower than one thread on every mesh
+//! measured, 2D and 3D, AMD and METIS, up to a 1M-triangle disk
+//! (docs/benchmarks/ordering.md).
+//!
+//! The default is [`ThreadPolicy::Split`]: tree-level parallelism, decided
+//! from the symbolic analysis alone (`tree.rs`), which falls back to the
+//! sequential factorisation whenever the split is not estimated to pay, so
+//! two threads are never slower than one by construction of the estimate,
+//! and the bits are the same run to run for a given number of threads. On a
+//! quiet machine it made the whole Newton solve 1.6–1.9× faster on two
+//! threads than on one (camelhead, armadillo_cut_low; threads.md).
 //!
 //! [`ThreadPolicy::Auto`] (opt-in) measures instead: the first factorisation
 //! of a pattern runs sequentially, the second in parallel, and the faster
@@ -32,9 +36,7 @@ pub enum ThreadPolicy {
     /// Time one sequential and one parallel factorisation, keep the faster
     /// (see the module docs; not bitwise reproducible).
     Auto,
-    /// Always one thread (the default: faster on every mesh measured, and
-    /// reproducible).
-    #[default]
+    /// Always one thread.
     Sequential,
     /// Always all threads of the current rayon pool.
     Parallel,
@@ -43,10 +45,11 @@ pub enum ThreadPolicy {
     /// (`split.rs`), when the pool has at least two threads at the symbolic
     /// analysis, the factorisation is large enough to pay
     /// ([`super::SPLIT_MIN_FLOPS`]) and the split's estimated critical path
-    /// is at most 0.75 of the plain factorisation's flops (`tree.rs`);
+    /// is at most 0.9 of the plain factorisation's flops (`tree.rs`);
     /// otherwise as [`ThreadPolicy::Sequential`]. Decided from the symbolic
     /// analysis alone, and the same bits run to run for a given number of
-    /// threads.
+    /// threads. The default.
+    #[default]
     Split,
 }
 

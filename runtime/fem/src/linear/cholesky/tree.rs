@@ -36,8 +36,13 @@ const DENSE_WEIGHT: f64 = 1.0 / 3.0;
 
 /// A split is made when its estimated critical path is at most this
 /// fraction of the plain factorisation's flops (an estimated speed-up of
-/// at least 1/0.75 ≈ 1.33 on two threads).
-pub(crate) const MAX_CRITICAL_RATIO: f64 = 0.75;
+/// at least 1/0.9 ≈ 1.11 on two threads). The estimate is pessimistic: the
+/// halves' left-looking kernel is itself faster than faer's plain
+/// factorisation on these matrices, and on a quiet machine hand.mesh's
+/// scene matrices (estimate 0.81) factorised 1.5× faster split than on one
+/// thread, camelhead and armadillo_cut_low (0.67, 0.70) 1.7× and 1.9×
+/// (docs/benchmarks/threads.md).
+pub(crate) const MAX_CRITICAL_RATIO: f64 = 0.9;
 
 /// At most this many supernodes move into S (each step is O(forest)).
 const MAX_STEPS: usize = 256;
