@@ -3,7 +3,7 @@
 //!
 //! | size | per element | per solve | scaling |
 //! |---|---|---|---|
-//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 4 problems × 5 methods, ≤ 30 s each | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
+//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 5 problems × 8 methods, ≤ 30 s each | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
 //! | `--quick` | 2 samples/class, 128 × 11 | same problems, ≤ 8 s each | tris 10k, 100k; tets 10k, 30k; 2 steps |
 //! | tiny (tests) | 1 sample, 2 energies, 3 classes | hand_1_i_f5000, 2 s | 2k tris, 1k tets, 1 step |
 //!
@@ -205,6 +205,7 @@ fn param_solves(
         &[
             ("camelhead (SD)", "camelhead.off"),
             ("armadillo_cut_low (SD)", "armadillo_cut_low.obj"),
+            ("hand_1_i_f5000 (SD)", "hand_1_i_f5000.obj"),
         ]
     };
     for &(name, file) in params {

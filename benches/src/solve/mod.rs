@@ -37,6 +37,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use ecc_fem::elastic::Projection;
+use ecc_fem::param::ParamOptions;
 use ecc_fem::{
     Elastic, Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term, Tet, Tri,
 };
@@ -54,6 +55,14 @@ pub const THRESHOLDS: [f64; 4] = [1e-2, 1e-4, 1e-6, 1e-8];
 /// How the Newton system is built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum SolveMethod {
+    /// The library's defaults (what `ecc sim` and `ecc_fem::param` run):
+    /// `Projection::default()`, `LinearSolver::Auto`, the split thread
+    /// policy, and on parameterisations the trust-region Newton policy of
+    /// `ParamOptions::default()`.
+    Defaults,
+    /// [`SolveMethod::Defaults`] in a one-thread rayon pool (symbolic
+    /// analysis included), for the 1-vs-2-threads comparison.
+    DefaultsOneThread,
     Clamp,
     Abs,
     Adaptive,
@@ -63,7 +72,9 @@ pub enum SolveMethod {
 }
 
 impl SolveMethod {
-    pub const ALL: [SolveMethod; 6] = [
+    pub const ALL: [SolveMethod; 8] = [
+        SolveMethod::Defaults,
+        SolveMethod::DefaultsOneThread,
         SolveMethod::Clamp,
         SolveMethod::Abs,
         SolveMethod::Adaptive,
@@ -75,6 +86,8 @@ impl SolveMethod {
     /// Label for tables and legends.
     pub fn label(self) -> &'static str {
         match self {
+            SolveMethod::Defaults => "ecc defaults",
+            SolveMethod::DefaultsOneThread => "ecc defaults, 1 thread",
             SolveMethod::Clamp => "analytic clamp",
             SolveMethod::Abs => "analytic abs",
             SolveMethod::Adaptive => "adaptive (clamp/abs by ρ)",
@@ -82,6 +95,27 @@ impl SolveMethod {
             SolveMethod::LaplacianProxy => "Laplacian proxy",
             SolveMethod::Autodiff => "autodiff + numeric elem. proj.",
         }
+    }
+
+    /// [`SolveMethod::Defaults`] on any number of threads.
+    pub fn is_defaults(self) -> bool {
+        matches!(self, SolveMethod::Defaults | SolveMethod::DefaultsOneThread)
+    }
+
+    /// Run `f` on the threads this method asks for: a one-thread pool for
+    /// [`SolveMethod::DefaultsOneThread`], the caller's pool otherwise.
+    fn on_its_threads<R: Send>(
+        self,
+        f: impl FnOnce() -> Result<R, SolveError> + Send,
+    ) -> Result<R, SolveError> {
+        if self != SolveMethod::DefaultsOneThread {
+            return f();
+        }
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .map_err(err)?
+            .install(f)
     }
 }
 
@@ -242,6 +276,9 @@ fn params(method: SolveMethod, limits: &SolveLimits, scale: f64) -> NewtonParams
         limits.newton_iters
     };
     match method {
+        SolveMethod::Defaults | SolveMethod::DefaultsOneThread => {
+            p.linear_solver = NewtonParams::default().linear_solver
+        }
         SolveMethod::Abs => p.filter = Filter::Abs,
         SolveMethod::Adaptive => p.filter_policy = FilterPolicy::TrustRegion,
         _ => {}
@@ -348,6 +385,23 @@ pub fn parameterization_with(
     limits: &SolveLimits,
     variant: &Variant,
 ) -> Result<Trace, SolveError> {
+    method.on_its_threads(|| param_run(problem, mesh, energy, method, limits, variant))
+}
+
+fn param_run(
+    problem: &str,
+    mesh: &TriMesh,
+    energy: Arc<dyn Energy<2>>,
+    method: SolveMethod,
+    limits: &SolveLimits,
+    variant: &Variant,
+) -> Result<Trace, SolveError> {
+    let defaults = ParamOptions::default();
+    let projection = if method.is_defaults() {
+        defaults.projection
+    } else {
+        variant.projection
+    };
     let e0 =
         Elastic::<dyn Energy<2>, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)
             .map_err(err)?;
@@ -359,7 +413,7 @@ pub fn parameterization_with(
     let scaled: Vec<[f64; 3]> = mesh.positions.iter().map(|p| p.map(|c| c * s)).collect();
     let elastic = Elastic::<dyn Energy<2>, Tri>::surface(energy, &scaled, &mesh.triangles)
         .map_err(err)?
-        .with_projection(variant.projection);
+        .with_projection(projection);
     let area = elastic.total_measure();
     let rest = elastic.rest().to_vec();
     let name = elastic.energy().name().to_string();
@@ -367,6 +421,9 @@ pub fn parameterization_with(
     let scale = if variant.raw_units { 2.0 } else { 1.0 / area };
     let mut p = params(method, limits, scale);
     variant.apply(&mut p);
+    if method.is_defaults() {
+        p.filter_policy = defaults.newton.filter_policy;
+    }
     let solver = NewtonSolver::new(mesh.positions.len(), vec![term], &[], p).map_err(err)?;
     let mut uv = tutte_embedding(mesh, TutteWeights::Uniform).map_err(err)?;
     let uv_area: f64 = mesh
@@ -459,9 +516,25 @@ pub fn deformation_with(
     limits: &SolveLimits,
     variant: &Variant,
 ) -> Result<Trace, SolveError> {
+    method.on_its_threads(|| deform_run(problem, mesh, energy, method, limits, variant))
+}
+
+fn deform_run(
+    problem: &str,
+    mesh: &TetMesh,
+    energy: Arc<dyn Energy<3>>,
+    method: SolveMethod,
+    limits: &SolveLimits,
+    variant: &Variant,
+) -> Result<Trace, SolveError> {
+    let projection = if method.is_defaults() {
+        Projection::default()
+    } else {
+        variant.projection
+    };
     let elastic = Elastic::<dyn Energy<3>, Tet>::new(energy, &mesh.positions, &mesh.tets)
         .map_err(err)?
-        .with_projection(variant.projection);
+        .with_projection(projection);
     let volume = elastic.total_measure();
     let rest = elastic.rest().to_vec();
     let name = elastic.energy().name().to_string();
