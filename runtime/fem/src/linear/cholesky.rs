@@ -620,6 +620,52 @@ mod tests {
         });
     }
 
+    /// faer's AVX-512 kernels leave the vector registers' upper halves in
+    /// use; every factorisation and solve must leave them cleared on the
+    /// calling thread and on the pool's workers (`clear_simd`), or the
+    /// scalar assembly that follows there runs up to 2× slower
+    /// (docs/benchmarks/threads.md §0).
+    #[test]
+    fn factorisations_and_solves_leave_the_vector_unit_clean_on_every_thread() {
+        let p = crate::linear::ordering::tests::grid(100, 100, 2);
+        let v = dominant(&p);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        for threads in [
+            ThreadPolicy::Split,
+            ThreadPolicy::Sequential,
+            ThreadPolicy::Parallel,
+        ] {
+            pool.install(|| {
+                let params = CholeskyParams {
+                    threads,
+                    ..Default::default()
+                };
+                let mut f = CholeskyFactor::analyze_with(&p, params).unwrap();
+                let dirty = || {
+                    let workers: Vec<Option<bool>> =
+                        rayon::broadcast(|_| ecc_util::simd::upper_simd_in_use());
+                    let mut all = workers;
+                    all.push(ecc_util::simd::upper_simd_in_use());
+                    all
+                };
+                f.factorize(&p, &v).unwrap();
+                let after_factor = dirty();
+                let mut x = vec![1.0; p.n()];
+                assert!(f.solve_in_place(&mut x));
+                let after_solve = dirty();
+                for (what, state) in [("factorisation", after_factor), ("solve", after_solve)] {
+                    assert!(
+                        state.iter().all(|d| *d != Some(true)),
+                        "{threads:?}: upper vector state in use after the {what}: {state:?}"
+                    );
+                }
+            });
+        }
+    }
+
     #[test]
     fn the_split_policy_splits_large_factors_on_two_threads_only() {
         let p = crate::linear::ordering::tests::grid(100, 100, 2);
