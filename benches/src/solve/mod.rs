@@ -102,6 +102,16 @@ impl SolveMethod {
         matches!(self, SolveMethod::Defaults | SolveMethod::DefaultsOneThread)
     }
 
+    /// The element projection this method solves with: the library default
+    /// for [`SolveMethod::is_defaults`], the variant's otherwise.
+    fn projection(self, variant: &Variant) -> Projection {
+        if self.is_defaults() {
+            Projection::default()
+        } else {
+            variant.projection
+        }
+    }
+
     /// Run `f` on the threads this method asks for: a one-thread pool for
     /// [`SolveMethod::DefaultsOneThread`], the caller's pool otherwise.
     fn on_its_threads<R: Send>(
@@ -397,11 +407,7 @@ fn param_run(
     variant: &Variant,
 ) -> Result<Trace, SolveError> {
     let defaults = ParamOptions::default();
-    let projection = if method.is_defaults() {
-        defaults.projection
-    } else {
-        variant.projection
-    };
+    let projection = method.projection(variant);
     let e0 =
         Elastic::<dyn Energy<2>, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)
             .map_err(err)?;
@@ -527,11 +533,7 @@ fn deform_run(
     limits: &SolveLimits,
     variant: &Variant,
 ) -> Result<Trace, SolveError> {
-    let projection = if method.is_defaults() {
-        Projection::default()
-    } else {
-        variant.projection
-    };
+    let projection = method.projection(variant);
     let elastic = Elastic::<dyn Energy<3>, Tet>::new(energy, &mesh.positions, &mesh.tets)
         .map_err(err)?
         .with_projection(projection);

@@ -436,6 +436,14 @@ impl CholeskyFactor {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A rayon pool of `threads` threads.
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+    }
     use crate::dofs::DofMap;
     use crate::pattern::{StencilSet, build};
 
@@ -589,10 +597,7 @@ mod tests {
     fn auto_threads_times_one_sequential_and_one_parallel_factorisation() {
         let p = crate::linear::ordering::tests::grid(100, 100, 2);
         let v = dominant(&p);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
+        let pool = pool(2);
         pool.install(|| {
             let params = CholeskyParams {
                 threads: ThreadPolicy::Auto,
@@ -629,10 +634,7 @@ mod tests {
     fn factorisations_and_solves_leave_the_vector_unit_clean_on_every_thread() {
         let p = crate::linear::ordering::tests::grid(100, 100, 2);
         let v = dominant(&p);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
+        let pool = pool(2);
         for threads in [
             ThreadPolicy::Split,
             ThreadPolicy::Sequential,
@@ -678,10 +680,7 @@ mod tests {
             ..Default::default()
         };
         let in_pool = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
+            let pool = pool(threads);
             pool.install(|| {
                 let mut f = CholeskyFactor::analyze_with(&p, params).unwrap();
                 let mut x = Vec::new();
@@ -733,10 +732,7 @@ mod tests {
             threads: ThreadPolicy::Split,
             ..Default::default()
         };
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
+        let pool = pool(2);
         let f = pool.install(|| CholeskyFactor::analyze_with(&p, params).unwrap());
         let (k, critical) = f.split().expect("split");
         let plain = CholeskyFactor::analyze(&p).unwrap().factor_flops();
