@@ -12,7 +12,8 @@
 //!   pulled out by 10 % of the length; start = rest positions with the handles
 //!   at their targets; energy_scale = 1/total volume.
 //!
-//! Methods ([`SolveMethod`]): projected Newton with the analytic clamp,
+//! Methods ([`SolveMethod`]): the library's defaults (as `ecc sim` runs them)
+//! on two threads and in a one-thread pool; projected Newton with the analytic clamp,
 //! with |λ| (Chen et al. 2024's "abs"), with the adaptive trust-region
 //! filter (`FilterPolicy::TrustRegion`: clamp when the previous step's
 //! ρ = actual/predicted decrease is within 1 % of 1, abs otherwise), with

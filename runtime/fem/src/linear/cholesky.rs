@@ -436,6 +436,8 @@ impl CholeskyFactor {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dofs::DofMap;
+    use crate::pattern::{StencilSet, build};
 
     /// A rayon pool of `threads` threads.
     fn pool(threads: usize) -> rayon::ThreadPool {
@@ -444,8 +446,6 @@ mod tests {
             .build()
             .unwrap()
     }
-    use crate::dofs::DofMap;
-    use crate::pattern::{StencilSet, build};
 
     /// Path graph 0-1-2-…: 1D Laplacian + I, tridiagonal, SPD.
     fn path(n: usize) -> (Pattern, Vec<f64>) {
