@@ -23,6 +23,7 @@
 use std::sync::Arc;
 
 use ecc_fem::elastic::Projection;
+use ecc_fem::param::ParamOptions;
 use ecc_fem::{Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
 use ecc_runtime::FibreEnergy;
 
@@ -49,12 +50,14 @@ use crate::terms::{
 pub const DEFAULT_MAX_ITERS: usize = 500;
 
 /// Newton parameters of a parameterisation (`[effects.parameterize]`):
-/// [`newton_params`] with the filter policy defaulting to
-/// [`FilterPolicy::TrustRegionNewton`] (fewer iterations on every measured
+/// [`newton_params`] with the filter policy defaulting to the library's
+/// parameterisation default, `ParamOptions::default()`'s
+/// ([`FilterPolicy::TrustRegionNewton`]: fewer iterations on every measured
 /// parameterisation, docs/benchmarks/projection.md).
 pub fn param_newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
+    let library = ParamOptions::default().newton.filter_policy;
     NewtonParams {
-        filter_policy: filter_policy(s, FilterPolicy::TrustRegionNewton),
+        filter_policy: filter_policy(s, library),
         ..newton_params(s, scale)
     }
 }
