@@ -37,7 +37,7 @@
 //! | [`filter`] | [`Filter`]: `None` (raw), `Clamp` (default), `ClampEps(ε)`, `Abs` |
 //! | [`dim`] | [`Space<D>`] and the sealed [`Dim<D>`]: the d², d + 1 and d(d + 1) sized types and kernels; callers are generic over `D` with `Space<D>: Dim<D>` |
 //! | [`point`] | [`gradient_f`], [`hessian_f`] (raw or filtered), [`eigen_f`]: F-space quantities at one point |
-//! | [`element`] | [`Rest<D>`] (Dm⁻¹, measure), [`element_f`], [`element_psi`], [`element_eval`] (x-space, × rest measure) |
+//! | [`element`] | [`Rest<D>`] (Dm⁻¹, measure), [`element_f`], [`element_psi`], [`element_eval`] (x-space, × rest measure), [`element_curvature`] (raw dxᵀ H dx without the Hessian) |
 //! | [`energies`] | hand-written ARAP, Symmetric Dirichlet, Stable Neo-Hookean |
 //! | [`reference`](mod@reference) | nalgebra projection and central differences [`fd_gradient_f`](reference::fd_gradient_f), [`fd_hessian_f`](reference::fd_hessian_f) (tests, benches, `ecc check`); [`reference::check`]: the F-space checker (gradient, raw Hessian vs differences, eigenpairs vs `SymmetricEigen`, filtered Hessians PSD and equal to the numeric projection); with the `cases` feature, `reference::cases`: the one named hard-case table and seeded rotations |
 //!
@@ -125,8 +125,8 @@ pub mod sym;
 
 pub use dim::{Dim, ElemMat, ElemVec, FMat, FVec, Nodes, Space};
 pub use element::{
-    Congruence, ElementEval, Rest, RestError, element_eval, element_eval_projected, element_f,
-    element_psi,
+    Congruence, ElementEval, Rest, RestError, element_curvature, element_eval,
+    element_eval_projected, element_f, element_psi,
 };
 pub use energy::{Energy, EnergyInfo, ParamError};
 pub use fibre::{FibreDerivs, FibreEnergy, FibreUse};
