@@ -273,9 +273,9 @@ impl<const D: usize> Assembler<D> {
     }
 
     /// Σ_s d_sᵀ H_s d_s with the *unfiltered* stencil Hessians (times scale),
-    /// for the trust-region ratio of the adaptive filter. `d` is a full
-    /// per-vertex direction (zero on fixed DOFs). Non-finite stencils
-    /// contribute `+∞`.
+    /// for the trust-region ratio of the adaptive filter, from
+    /// [`Term::curvature`] per stencil. `d` is a full per-vertex direction
+    /// (zero on fixed DOFs). Non-finite stencils contribute `+∞`.
     pub fn raw_curvature(
         &mut self,
         terms: &[Box<dyn Term<D>>],
@@ -286,32 +286,8 @@ impl<const D: usize> Assembler<D> {
         let mut total = 0.0;
         for (ti, term) in terms.iter().enumerate() {
             let t0 = Instant::now();
-            let arity = term.arity();
-            let k = arity * D;
-            let stencils = term.stencils();
             let n = self.psi[ti].len();
-            total += sum_indexed(n, &mut self.partials, |s| {
-                let mut lg = [0.0f64; MAX_STENCIL_DOFS];
-                let mut lh = [0.0f64; MAX_STENCIL_DOFS * MAX_STENCIL_DOFS];
-                let psi = term.evaluate(s, x, Filter::None, &mut lg[..k], Some(&mut lh[..k * k]));
-                if !psi.is_finite() {
-                    return f64::INFINITY;
-                }
-                let st = &stencils[s * arity..(s + 1) * arity];
-                let mut dl = [0.0f64; MAX_STENCIL_DOFS];
-                for a in 0..k {
-                    dl[a] = d[st[a / D]][a % D];
-                }
-                let mut acc = 0.0;
-                for a in 0..k {
-                    let mut r = 0.0;
-                    for b in 0..k {
-                        r += lh[a * k + b] * dl[b];
-                    }
-                    acc += dl[a] * r;
-                }
-                acc
-            });
+            total += sum_indexed(n, &mut self.partials, |s| term.curvature(s, x, d));
             let tm = &mut self.timings[ti];
             tm.assembly_passes += 1;
             tm.assembly_seconds += t0.elapsed().as_secs_f64();

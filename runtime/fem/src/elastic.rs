@@ -4,7 +4,8 @@
 //! element energy, node-major gradient and PSD-filtered Hessian come from
 //! `ecc_runtime::element_eval` (already weighted by |q|), the cheap
 //! line-search value from `element_psi` (SVD-free when the energy supports
-//! it). One [`Term`] impl serves both dimensions; [`Simplex`] holds the only
+//! it), the trust-region curvature dxᵀ H dx from `element_curvature` (no
+//! element Hessian). One [`Term`] impl serves both dimensions; [`Simplex`] holds the only
 //! per-simplex piece, the degree of det Ds(x + α dx) in α. For barrier energies (`info().barrier`)
 //! [`Term::max_step`] returns the first root of det Ds(x + α dx) = 0 in
 //! (0, 2] (quadratic in 2D, cubic in 3D, see [`crate::roots`]); det Dm > 0
@@ -32,8 +33,8 @@ use std::marker::PhantomData;
 use std::sync::Arc;
 
 use ecc_runtime::{
-    Congruence, Dim, Energy, Filter, Nodes, Rest, RestError, Space, element_eval,
-    element_eval_projected, element_psi,
+    Congruence, Dim, Energy, Filter, Nodes, Rest, RestError, Space, element_curvature,
+    element_eval, element_eval_projected, element_psi,
 };
 use nalgebra::SMatrix;
 
@@ -416,6 +417,18 @@ where
             }
         }
         ev.psi
+    }
+
+    /// The raw curvature from the element's eigensystem
+    /// ([`element_curvature`]: no 6×6 / 12×12 Hessian is formed); `+∞`
+    /// outside a barrier's domain, as [`Term::evaluate`] gives there. The
+    /// raw Hessian is the same for every [`Projection`], so is this.
+    fn curvature(&self, s: usize, x: &[[f64; D]], dx: &[[f64; D]]) -> f64 {
+        let p = self.nodes(s, x);
+        if self.barrier && !Self::inside(&p) {
+            return f64::INFINITY;
+        }
+        element_curvature(&*self.energy, &self.rest[s], &p, &self.nodes(s, dx))
     }
 
     fn max_step(&self, s: usize, x: &[[f64; D]], dx: &[[f64; D]]) -> f64 {

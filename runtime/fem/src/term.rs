@@ -11,6 +11,8 @@
 //! * [`Term::evaluate`]: e_s, its local gradient ∂e_s/∂x_s (length k = arity·D,
 //!   node-major: `[x0.x, x0.y, (x0.z), x1.x, …]`) and, when asked, the local
 //!   Hessian (k×k, row-major, PSD-filtered with the given [`Filter`]);
+//! * [`Term::curvature`]: dxᵀ ∇²e_s dx with the raw Hessian (trust-region
+//!   ratio; the default goes through [`Term::evaluate`]);
 //! * [`Term::max_step`]: the largest α ≤ 1 (or `+∞`) such that the stencil
 //!   stays in its domain along x + α·dx (barrier terms).
 //!
@@ -63,6 +65,38 @@ pub trait Term<const D: usize>: Any + Send + Sync {
         grad: &mut [f64],
         hess: Option<&mut [f64]>,
     ) -> f64;
+
+    /// dxᵀ ∇²e_s(x) dx with the *raw* (unfiltered) Hessian: the curvature of
+    /// e_s along the step for the trust-region ratio. `dx` is the full
+    /// per-vertex direction, like `x`. `+∞` where e_s(x) is not finite.
+    ///
+    /// The default evaluates the local Hessian with [`Filter::None`] and forms
+    /// dlᵀ H dl (dl = `dx` on the stencil, node-major); terms that can give
+    /// the same number without the k×k Hessian override it.
+    fn curvature(&self, s: usize, x: &[[f64; D]], dx: &[[f64; D]]) -> f64 {
+        let arity = self.arity();
+        let k = arity * D;
+        let mut lg = [0.0f64; MAX_STENCIL_DOFS];
+        let mut lh = [0.0f64; MAX_STENCIL_DOFS * MAX_STENCIL_DOFS];
+        let psi = self.evaluate(s, x, Filter::None, &mut lg[..k], Some(&mut lh[..k * k]));
+        if !psi.is_finite() {
+            return f64::INFINITY;
+        }
+        let st = &self.stencils()[s * arity..(s + 1) * arity];
+        let mut dl = [0.0f64; MAX_STENCIL_DOFS];
+        for a in 0..k {
+            dl[a] = dx[st[a / D]][a % D];
+        }
+        let mut acc = 0.0;
+        for a in 0..k {
+            let mut r = 0.0;
+            for b in 0..k {
+                r += lh[a * k + b] * dl[b];
+            }
+            acc += dl[a] * r;
+        }
+        acc
+    }
 
     /// The largest step α ∈ (0, ∞] such that e_s stays finite on [x, x + α·dx)
     /// (only needs to be exact below 1). Non-barrier terms keep the default `+∞`.
