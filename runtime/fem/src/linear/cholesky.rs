@@ -171,11 +171,7 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
     let mem = MemBuffer::try_new(req)
         .map_err(|_| FemError::Symbolic("out of memory for scratch".into()))?;
     let len = symbolic.len_val();
-    let mut l_values = Vec::new();
-    l_values
-        .try_reserve_exact(len)
-        .map_err(|_| FemError::Symbolic(format!("out of memory for a factor of {len} values")))?;
-    l_values.resize(len, 0.0);
+    let l_values = split::zeros(len, &format!("a factor of {len} values"))?;
     Ok(Analysis {
         symbolic,
         l_values,
