@@ -203,6 +203,11 @@ fn ic0_needs_fewer_cg_iterations_than_jacobi_and_block_jacobi() {
 
 /// `Auto` with the adaptive backend forced (ρ = ∞) and the limits `limits`.
 fn auto_with(limits: AutoLimits) -> (NewtonResult, Vec<[f64; 2]>) {
+    auto_capped(limits, NewtonParams::default().pcg_max_iters)
+}
+
+/// [`auto_with`] with at most `max_cg` CG iterations per step.
+fn auto_capped(limits: AutoLimits, max_cg: usize) -> (NewtonResult, Vec<[f64; 2]>) {
     let params = NewtonParams {
         tol_abs: 1e-8,
         linear_solver: LinearSolver::Auto,
@@ -210,6 +215,7 @@ fn auto_with(limits: AutoLimits) -> (NewtonResult, Vec<[f64; 2]>) {
             pcg_trial_ratio: f64::INFINITY,
             ..limits
         },
+        pcg_max_iters: max_cg,
         ..Default::default()
     };
     let (r, err, x) = squeezed_with(params);
@@ -246,18 +252,23 @@ fn auto_whose_pcg_attempts_all_succeed_is_pcg() {
 }
 
 /// A residual cap no CG run can meet: every attempt that is made fails
-/// (by its budget or the give-up rule), each failure is followed by one
+/// (by its budget or the give-up rule; at most 60 iterations, so CG's
+/// recursive residual cannot underflow to 0 as it can after hundreds of
+/// iterations on this 450-unknown system), each failure is followed by one
 /// factorisation of that step and a wait of 2^m steps, so there are at most ⌊log₂(N+1)⌋ failed attempts
 /// (bound (2) of `linear::adaptive`), every step factorises once (no shift
 /// retries on this SPD problem), and the iterates are Cholesky's.
 #[test]
 fn auto_whose_pcg_attempts_fail_falls_back_with_bounded_waste() {
     let (off, _) = squeezed(FactorReuse::OFF, 1e-8);
-    let (auto, _) = auto_with(AutoLimits {
-        factor_speedup: 1e-3,
-        pcg_rel_tol: 1e-300,
-        ..AutoLimits::default()
-    });
+    let (auto, _) = auto_capped(
+        AutoLimits {
+            factor_speedup: 1e-3,
+            pcg_rel_tol: 1e-300,
+            ..AutoLimits::default()
+        },
+        60,
+    );
     let n = auto.iterations;
     assert_eq!(n, off.iterations);
     assert_eq!(auto.numeric_factorizations, n);

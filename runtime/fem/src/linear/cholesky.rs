@@ -13,6 +13,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltError;
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -145,9 +146,8 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
         (Some(p), Some(i)) => SymmetricOrdering::Custom(PermRef::new_checked(p, i, n)),
         _ => SymmetricOrdering::Amd,
     };
-    let symbolic =
-        factorize_symbolic_cholesky(a, Side::Upper, ordering, CholeskySymbolicParams::default())
-            .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
+    let symbolic = factorize_symbolic_cholesky(a, Side::Upper, ordering, symbolic_params())
+        .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
     let threads = ThreadChooser::new(
         params.threads,
         matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
@@ -179,6 +179,20 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
         threads,
         split,
     })
+}
+
+/// faer's symbolic parameters: always supernodal. faer picks its simplicial
+/// factorisation below ≈ 80 flops per stored value of L (Σ c² / nnz(L)),
+/// which on the meshes measured (2026-12-02, one thread, block AMD) is
+/// 1.4–2.8× slower than its supernodal one: bar-2523 (tets, n = 2658)
+/// 3.7 → 1.4 ms, hand_1_i_f5000 4.2 → 2.0 ms, a 1.9k-triangle disk
+/// 5.0 → 1.8 ms, a 600-triangle disk 0.3 → 0.2 ms; where faer already chose
+/// supernodal nothing changes. (CHOLMOD on hand_1_i_f5000: 3.5–4.8 ms.)
+fn symbolic_params() -> CholeskySymbolicParams<'static> {
+    CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        ..Default::default()
+    }
 }
 
 /// Estimated flops of one numeric factorisation, Σ_j c_j² over the column

@@ -468,7 +468,7 @@ mod tests {
             let mut vals = v.clone();
             let info = sys.prepare(&p, &mut vals, 0.0, 12).unwrap();
             let mut x = vec![0.0; n];
-            sys.solve(&p, &vals, &b, &mut x, 1e-12, 10 * n);
+            let solved = sys.solve(&p, &vals, &b, &mut x, 1e-12, 10 * n);
             let mut hx = vec![0.0; n];
             p.sym_matvec(&v, &x, &mut hx);
             let err = hx
@@ -478,7 +478,9 @@ mod tests {
                 .fold(0.0, f64::max);
             assert!(err < 1e-6, "{kind:?}: residual {err}, shift {}", info.shift);
             if sys.kind() == LinearSolver::Cholesky {
-                assert!(info.factorizations >= 1);
+                // `Auto`'s adaptive backend factorises in `solve` after a
+                // failed PCG attempt: count both
+                assert!(info.factorizations + solved.factorizations >= 1);
             }
         }
     }
