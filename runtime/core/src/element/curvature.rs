@@ -22,9 +22,13 @@
 //!     + Σ_{i<j} [λ_twist,ij (dF̃_ij − dF̃_ji)²/2 + λ_flip,ij (dF̃_ij + dF̃_ji)²/2].
 //!
 //! A d×d product and the stretch-space data replace the 6×6 / 12×12 Hessian.
-//! The SVD and [`Spectral`](crate::Spectral) come from the same calls as in
-//! the element kernel ([`element_eval`](crate::element_eval)), and A, λ_twist,
-//! λ_flip are read through the same unfiltered stretch-space data
+//! σ and [`Spectral`](crate::Spectral) are the element kernel's
+//! ([`element_eval`](crate::element_eval)): in 3D from the same
+//! [`signed_svd`](crate::signed_svd) call, in 2D from the same closed form as
+//! [`signed_svd2`](crate::signed_svd2) (bit-identical σ, tested), whose frame
+//! rotates dF without its two atan2 and two sin_cos (eqs. 4–5 at
+//! `frame_2d`; that halves the pass on triangles). A, λ_twist, λ_flip are
+//! read through the same unfiltered stretch-space data
 //! (`Filtered::new(.., Filter::None)`: symmetrised A, a full A with a
 //! non-finite entry reduced to its diagonal), so removable singularities
 //! (σ_i = σ_j, σ_i + σ_j ≈ 0) get exactly the limits the raw Hessian gets.
@@ -60,17 +64,76 @@ pub fn element_curvature<const D: usize, E: Energy<D> + ?Sized>(
 where
     Space<D>: Dim<D>,
 {
-    let svd = signed_svd(&element_f(rest, x));
-    if !svd.is_finite() {
+    // eq. (2): dF = dDs Dm⁻¹ is element_f of the direction (F is linear in x).
+    let (f, df) = (element_f(rest, x), element_f(rest, dx));
+    let frame = if D == 2 {
+        frame_2d(&f, &df)
+    } else {
+        frame_svd(&f, &df)
+    };
+    let Some((sigma, dft)) = frame else {
         return f64::INFINITY;
-    }
-    let s = e.spectral(&svd.sigma);
+    };
+    let s = e.spectral(&sigma);
     if !(rest.measure * s.psi).is_finite() {
         return f64::INFINITY;
     }
-    // eq. (2): dF = dDs Dm⁻¹ is element_f of the direction (F is linear in x).
-    let dft = svd.u.transpose() * element_f(rest, dx) * svd.v;
     rest.measure * modal_form(&Filtered::new(&s, Filter::None), &dft)
+}
+
+/// σ and dF̃ = Uᵀ dF V from the signed SVD; `None` when it is not finite.
+#[inline]
+fn frame_svd<const D: usize>(
+    f: &SMatrix<f64, D, D>,
+    df: &SMatrix<f64, D, D>,
+) -> Option<([f64; D], SMatrix<f64, D, D>)> {
+    let svd = signed_svd(f);
+    svd.is_finite()
+        .then(|| (svd.sigma, svd.u.transpose() * df * svd.v))
+}
+
+/// (cos α, sin α) of α = atan2(y, x) for r = |(x, y)|, without the
+/// trigonometry unless r = 0 (then atan2's signed-zero conventions).
+#[inline]
+fn unit(x: f64, y: f64, r: f64) -> (f64, f64) {
+    if r == 0.0 {
+        let a = y.atan2(x);
+        (a.cos(), a.sin())
+    } else {
+        (x / r, y / r)
+    }
+}
+
+/// D = 2: σ and dF̃ of [`signed_svd2`](crate::signed_svd2)'s frame without its
+/// trigonometry. With F = Q rot(α₂) + R refl(α₁) (E, H, P, G, Q, R as
+/// there), σ = (Q + R, Q − R), U = rot(φ), V = rot(ψ), φ ± ψ = α₁, α₂, one has
+/// Uᵀ rot(β) V = rot(β − α₂) and Uᵀ refl(β) V = refl(β − α₁); so with dF's own
+/// parts E′, H′, P′, G′ (4) Ẽ + iH̃ = (E′ + iH′) e^{−iα₂},
+/// P̃ + iG̃ = (P′ + iG′) e^{−iα₁} and (5) dF̃ = [[Ẽ + P̃, G̃ − H̃], [G̃ + H̃, Ẽ − P̃]].
+#[inline]
+fn frame_2d<const D: usize>(
+    f: &SMatrix<f64, D, D>,
+    df: &SMatrix<f64, D, D>,
+) -> Option<([f64; D], SMatrix<f64, D, D>)> {
+    let parts = |m: &SMatrix<f64, D, D>| {
+        let (a, b, c, d) = (m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]);
+        (0.5 * (a + d), 0.5 * (c - b), 0.5 * (a - d), 0.5 * (c + b))
+    };
+    let (e, h, p, g) = parts(f);
+    let (q, r) = (e.hypot(h), p.hypot(g));
+    let sigma = [q + r, q - r];
+    if !(sigma[0].is_finite() && sigma[1].is_finite()) {
+        return None;
+    }
+    let ((c2, s2), (c1, s1)) = (unit(e, h, q), unit(p, g, r));
+    let (de, dh, dp, dg) = parts(df);
+    let (te, th) = (de * c2 + dh * s2, dh * c2 - de * s2);
+    let (tp, tg) = (dp * c1 + dg * s1, dg * c1 - dp * s1);
+    let t = [[te + tp, tg - th], [tg + th, te - tp]];
+    Some((
+        std::array::from_fn(|i| sigma[i]),
+        SMatrix::from_fn(|i, j| t[i][j]),
+    ))
 }
 
 /// dF : H : dF from the stretch-space data and dF̃ = Uᵀ dF V, eq. (3).
@@ -230,6 +293,40 @@ mod tests {
         // and a finite neighbour of the pole stays finite
         let x = diag([1.2, 0.9, -0.8]);
         assert!(element_curvature(&Arap, &rest, &x, &dx).is_finite());
+    }
+
+    /// `frame_2d` gives `signed_svd2`'s σ bit for bit and its Uᵀ dF V to
+    /// rounding, also at R = 0 (repeated σ), Q = 0 (σ0 + σ1 = 0) and F = 0.
+    #[test]
+    fn the_2d_frame_is_signed_svd2s() {
+        use super::{frame_2d, frame_svd};
+        use nalgebra::Matrix2;
+        let mut r = rng(33);
+        let mut fs = vec![
+            Matrix2::identity(),
+            Matrix2::new(0.9, 0.0, 0.0, -0.9),
+            Matrix2::new(-0.0, 0.0, 0.0, -0.0),
+            Matrix2::new(0.0, -1.3, 1.3, 0.0),
+            Matrix2::new(-0.7, 0.0, 0.0, -0.7),
+            Matrix2::new(1e3, 0.2, -0.1, 1e-6),
+        ];
+        for c in hard_cases_2d() {
+            fs.push(compose(
+                &rotation::<2>(&mut r),
+                &c.sigma,
+                &rotation::<2>(&mut r),
+            ));
+        }
+        for (k, f) in fs.iter().enumerate() {
+            let df = Matrix2::new(0.3, -0.7, 0.5, 0.1 + 0.01 * k as f64);
+            let (s2, t2) = frame_2d(f, &df).unwrap();
+            let (s, t) = frame_svd(f, &df).unwrap();
+            assert_eq!(s2.map(f64::to_bits), s.map(f64::to_bits), "{f}");
+            assert!((t2 - t).amax() <= 1e-14 * df.amax(), "{f}: {t2} vs {t}");
+        }
+        let nan = Matrix2::new(f64::NAN, 0.0, 0.0, 1.0);
+        let inf = Matrix2::new(f64::INFINITY, 0.0, 0.0, 1.0);
+        assert!(frame_2d(&nan, &nan).is_none() && frame_2d(&inf, &inf).is_none());
     }
 
     #[test]
