@@ -10,7 +10,8 @@
 //! is a base method followed by `+`-separated changes:
 //! * bases: `fspace`, `element`, `hybrid` (analytic clamp with that
 //!   projection), `numeric` (raw element Hessian, nalgebra eigensolve of the
-//!   6×6), `autodiff` (dual numbers + numeric projection);
+//!   6×6), `autodiff` (dual numbers + numeric projection), `defaults` /
+//!   `defaults1` (what `ecc sim` runs, on two threads / one);
 //! * changes: `one` (every line search starts at α = 1, the barrier's +∞
 //!   rejects steps past α_max), `s<x>` (barrier_safety x), `b<x>`
 //!   (backtracking factor), `c<x>` (Armijo c₁), `eps<x>` (clamp eigenvalues
@@ -53,6 +54,8 @@ fn parse(spec: &str) -> Result<(SolveMethod, Variant), String> {
         }
         "numeric" => SolveMethod::NumericProjection,
         "autodiff" => SolveMethod::Autodiff,
+        "defaults" => SolveMethod::Defaults,
+        "defaults1" => SolveMethod::DefaultsOneThread,
         other => return Err(format!("{spec}: unknown base `{other}`")),
     };
     for change in parts {

@@ -408,7 +408,11 @@ fn param_run(
     variant: &Variant,
 ) -> Result<Trace, SolveError> {
     let defaults = ParamOptions::default();
-    let projection = method.projection(variant);
+    // the defaults' `Auto` resolves for the parameterisation's policy, as
+    // `ecc_fem::param::prepare` does
+    let projection = method
+        .projection(variant)
+        .resolve_for(2, defaults.newton.filter_policy);
     let e0 =
         Elastic::<dyn Energy<2>, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)
             .map_err(err)?;

@@ -39,6 +39,7 @@ use ecc_runtime::{
 use nalgebra::SMatrix;
 
 use crate::error::FemError;
+use crate::newton::params::FilterPolicy;
 use crate::roots::{first_nonpositive, tet_det_poly, tri_det_poly};
 use crate::term::Term;
 
@@ -64,11 +65,16 @@ pub enum Projection {
         /// Smallest condition number of the rest metric M that gets the exact projection.
         min_cond: f64,
     },
-    /// By dimension, from the measurements in `docs/benchmarks/projection.md`:
-    /// `Element` for triangles (fewer Newton iterations on the SD
-    /// parameterisations for a 4×4 Jacobi eigensolve per indefinite element),
-    /// `FSpace` for tetrahedra (the 9×9 eigensolve costs more than the
-    /// iterations it saves there).
+    /// By dimension and Newton filter policy, from the measurements in
+    /// `docs/benchmarks/projection.md` ([`Projection::resolve_for`]):
+    /// `Element` for triangles under a filter that is always applied (fewer
+    /// Newton iterations on the SD parameterisations with the fixed clamp
+    /// for a 4×4 Jacobi eigensolve per indefinite element), `FSpace` for
+    /// triangles under [`FilterPolicy::TrustRegionNewton`] (the raw Hessian
+    /// near the minimiser makes the projection's accuracy moot there, and
+    /// f-space took fewer iterations and less time on every measured
+    /// parameterisation) and for tetrahedra (the 9×9 eigensolve costs more
+    /// than the iterations it saves).
     Auto,
 }
 
@@ -98,11 +104,27 @@ impl Projection {
         }
     }
 
-    /// The explicit choice `self` stands for in dimension `d` (`Auto`
-    /// resolved; the others unchanged).
+    /// The explicit choice `self` stands for in dimension `d` under the
+    /// default, fixed filter policy: [`Projection::resolve_for`] with
+    /// [`FilterPolicy::Fixed`] (what an `Elastic` term uses when nothing
+    /// resolved `Auto` before it).
     pub fn resolve(self, d: usize) -> Projection {
+        self.resolve_for(d, FilterPolicy::Fixed)
+    }
+
+    /// The explicit choice `self` stands for in dimension `d` for a Newton
+    /// solve with filter policy `policy` (`Auto` resolved; the others
+    /// unchanged). Measured (2026-12-02, SD parameterisations to 1e-4,
+    /// `benches/examples/iterations`, specs `element+trn` / `fspace+trn`):
+    /// under trust-region Newton f-space took 19 / 42 / 76 iterations and
+    /// 0.48 / 2.11 / 0.40 s on camelhead / armadillo_cut_low /
+    /// hand_1_i_f5000 against the element projection's 23 / 43 / 83 and
+    /// 0.72 / 2.75 / 0.54 s.
+    pub fn resolve_for(self, d: usize, policy: FilterPolicy) -> Projection {
         match self {
-            Projection::Auto if d == 2 => Projection::Element,
+            Projection::Auto if d == 2 && policy != FilterPolicy::TrustRegionNewton => {
+                Projection::Element
+            }
             Projection::Auto => Projection::FSpace,
             p => p,
         }

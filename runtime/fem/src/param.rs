@@ -231,7 +231,7 @@ fn build_solver<E: Energy<2> + ?Sized + 'static>(
     } else {
         elastic0
     }
-    .with_projection(opts.projection);
+    .with_projection(opts.projection.resolve_for(2, opts.newton.filter_policy));
     let rest_area = elastic.total_measure();
     let mut newton = opts.newton.clone();
     if opts.mean_energy {

@@ -61,3 +61,37 @@ fn raw_newton_steps_are_safe_with_every_linear_solver() {
         );
     }
 }
+
+/// With the default (trust-region Newton) policy, the default projection
+/// `Auto` is the F-space projection on triangles (`Projection::resolve_for`):
+/// the same iterates, bit for bit, as an explicit `FSpace`, and not those of
+/// the exact element projection; under the fixed policy `Auto` stays the
+/// element projection.
+#[test]
+fn the_default_parameterisation_projects_in_f_space() {
+    use ecc_fem::elastic::Projection;
+    let run = |projection: Projection, policy: FilterPolicy| {
+        let mut mesh = ecc_mesh::disk_tri(8, 1.0);
+        for p in &mut mesh.positions {
+            p[2] = 0.6 * (p[0] * p[0] - 0.5 * p[1] * p[1]) + 0.3 * p[0] * p[1];
+        }
+        let mut opts = ParamOptions::default();
+        opts.projection = projection;
+        opts.newton.filter_policy = policy;
+        opts.newton.tol_abs = 1e-8;
+        let p = parameterize(&mesh, Arc::new(SymmetricDirichlet), &opts).unwrap();
+        assert!(p.result.converged(), "{projection:?}, {policy:?}");
+        let uv: Vec<u64> = p.uv.iter().flatten().map(|c| c.to_bits()).collect();
+        (p.result.iterations, uv)
+    };
+    let trn = FilterPolicy::TrustRegionNewton;
+    assert_eq!(ParamOptions::default().projection, Projection::Auto);
+    let auto = run(Projection::Auto, trn);
+    assert_eq!(auto, run(Projection::FSpace, trn));
+    assert_ne!(auto, run(Projection::Element, trn));
+    let fixed = FilterPolicy::Fixed;
+    assert_eq!(
+        run(Projection::Auto, fixed),
+        run(Projection::Element, fixed)
+    );
+}

@@ -79,7 +79,39 @@ fn projections_of_the_elastic_term() {
     assert!((f1 - e1).amax() > 1e-6 * e1.amax());
 }
 
-/// `Auto` is `Element` on triangles and `FSpace` on tetrahedra, bit for bit.
+/// `Auto` resolves by dimension and filter policy: `Element` on triangles
+/// unless the policy is trust-region Newton, `FSpace` otherwise; explicit
+/// choices are kept under every policy.
+#[test]
+fn auto_projection_follows_the_dimension_and_the_filter_policy() {
+    use ecc_fem::FilterPolicy;
+    let policies = [
+        FilterPolicy::Fixed,
+        FilterPolicy::TrustRegion,
+        FilterPolicy::TrustRegionNewton,
+    ];
+    for policy in policies {
+        let tri = if policy == FilterPolicy::TrustRegionNewton {
+            Projection::FSpace
+        } else {
+            Projection::Element
+        };
+        assert_eq!(Projection::Auto.resolve_for(2, policy), tri, "{policy:?}");
+        assert_eq!(Projection::Auto.resolve_for(3, policy), Projection::FSpace);
+        for p in [
+            Projection::FSpace,
+            Projection::Element,
+            Projection::hybrid(),
+        ] {
+            for d in [2, 3] {
+                assert_eq!(p.resolve_for(d, policy), p);
+            }
+        }
+    }
+}
+
+/// `Auto` is `Element` on triangles and `FSpace` on tetrahedra, bit for bit
+/// (the fixed policy an `Elastic` term assumes).
 #[test]
 fn auto_projection_is_element_for_triangles_and_f_space_for_tets() {
     assert_eq!(Projection::Auto.resolve(2), Projection::Element);

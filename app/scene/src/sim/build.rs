@@ -105,6 +105,14 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
     }
 }
 
+/// The element projection of a `D`-dimensional deformation scene: `[solver]
+/// projection` with `auto` resolved for the scene's filter policy
+/// ([`Projection::resolve_for`]; parameterisations resolve it in
+/// `ecc_fem::param::prepare` for theirs).
+pub fn deformation_projection(s: &SolverSpec, d: usize) -> Projection {
+    projection(s).resolve_for(d, filter_policy(s, FilterPolicy::Fixed))
+}
+
 /// The element projection of `[solver] projection`.
 pub fn projection(s: &SolverSpec) -> Projection {
     match s.projection {

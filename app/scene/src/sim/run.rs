@@ -108,7 +108,7 @@ fn run_inner(
             let e: Arc<dyn Energy<2>> = be.energy.into();
             let rest: Vec<[f64; 2]> = mesh.positions.iter().map(|p| [p[0], p[1]]).collect();
             let body = Body::planar(rest, &mesh.triangles, e)
-                .with_projection(build::projection(&file.scene.solver));
+                .with_projection(build::deformation_projection(&file.scene.solver, 2));
             let boundary = boundary_loops(&mesh.triangles)
                 .map(|l| l.into_iter().flatten().collect())
                 .unwrap_or_else(|_| (0..mesh.positions.len()).collect());
@@ -120,7 +120,7 @@ fn run_inner(
             let fibre = fibre::fibre_energy::<3>(file, source, be.fibre)?;
             let e: Arc<dyn Energy<3>> = be.energy.into();
             let body = Body::volume(mesh.positions.clone(), &mesh.tets, e)
-                .with_projection(build::projection(&file.scene.solver));
+                .with_projection(build::deformation_projection(&file.scene.solver, 3));
             let mut boundary: Vec<usize> = tet_boundary_faces(&mesh.tets)
                 .into_iter()
                 .flatten()
