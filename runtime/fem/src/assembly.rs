@@ -19,7 +19,11 @@ use serde::{Deserialize, Serialize};
 use crate::dofs::DofMap;
 use crate::error::FemError;
 use crate::order::choose_order;
-use crate::parallel::{SharedMut, min_indexed, sum_indexed};
+use crate::parallel::{SharedMut, min_indexed, min_len, sum_indexed};
+
+/// Values zeroed per task before an assembly (a pass of stores; splitting a
+/// smaller one costs more than it saves).
+const ZERO_GRAIN: usize = 1 << 16;
 use crate::pattern::{NO_SLOT, Pattern, StencilSet, TermPlan, build, validate};
 use crate::term::{MAX_STENCIL_DOFS, Term};
 
@@ -184,11 +188,14 @@ impl<const D: usize> Assembler<D> {
         grad: &mut [f64],
         mut hessian: Option<(Filter, &mut [f64])>,
     ) -> Result<f64, NonFiniteStencil> {
+        // memory-bound: a thread per 64k values at most
         grad.par_iter_mut()
-            .with_min_len(4096)
+            .with_min_len(ZERO_GRAIN)
             .for_each(|g| *g = 0.0);
         if let Some((_, v)) = hessian.as_mut() {
-            v.par_iter_mut().with_min_len(4096).for_each(|h| *h = 0.0);
+            v.par_iter_mut()
+                .with_min_len(ZERO_GRAIN)
+                .for_each(|h| *h = 0.0);
         }
         let gptr = SharedMut::new(grad);
         let hptr = hessian.as_mut().map(|(_, v)| SharedMut::new(v));
@@ -202,9 +209,10 @@ impl<const D: usize> Assembler<D> {
             let psi_ptr = SharedMut::new(&mut self.psi[ti]);
             // first bad stencil, encoded as s·4 + what (what: 1 energy, 2 gradient, 3 hessian)
             let bad = AtomicUsize::new(usize::MAX);
+            let grain = min_len(self.psi[ti].len(), 64);
             for c in 0..plan.colouring.n_colours() {
                 let (lo, hi) = (plan.colouring.ptr[c], plan.colouring.ptr[c + 1]);
-                (lo..hi).into_par_iter().with_min_len(64).for_each_init(
+                (lo..hi).into_par_iter().with_min_len(grain).for_each_init(
                     || {
                         (
                             [0.0f64; MAX_STENCIL_DOFS],

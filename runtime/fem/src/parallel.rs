@@ -12,6 +12,22 @@ use rayon::prelude::*;
 /// Elements per chunk of a deterministic reduction.
 pub(crate) const CHUNK: usize = 2048;
 
+/// Passes over fewer items than this run on the calling thread. Waking the
+/// pool's other thread for each colour of an assembly, each reduction and
+/// each line-search bound costs more than it saves on small meshes:
+/// hand_1_i_f5000 (4999 triangles, SD, 2026-12-02) assembled in 2.3–2.7 ms
+/// per Newton step on two threads against 1.6 ms on one, and its solve took
+/// 0.41–0.44 s against 0.34 s; camelhead (22.7k) assembles 1.36× faster on
+/// two.
+pub(crate) const MIN_PARALLEL: usize = 8192;
+
+/// rayon's `with_min_len` for a pass over `n` items with grain `grain`:
+/// no split at all (the calling thread runs it) below [`MIN_PARALLEL`].
+#[inline]
+pub(crate) fn min_len(n: usize, grain: usize) -> usize {
+    if n < MIN_PARALLEL { usize::MAX } else { grain }
+}
+
 /// Number of partial sums needed to reduce `n` items.
 #[inline]
 pub(crate) fn n_chunks(n: usize) -> usize {
@@ -28,15 +44,20 @@ where
     if partials.len() < m {
         partials.resize(m, 0.0);
     }
-    partials[..m].par_iter_mut().enumerate().for_each(|(c, p)| {
-        let lo = c * CHUNK;
-        let hi = (lo + CHUNK).min(n);
-        let mut s = 0.0;
-        for i in lo..hi {
-            s += f(i);
-        }
-        *p = s;
-    });
+    let grain = min_len(n, 1);
+    partials[..m]
+        .par_iter_mut()
+        .with_min_len(grain)
+        .enumerate()
+        .for_each(|(c, p)| {
+            let lo = c * CHUNK;
+            let hi = (lo + CHUNK).min(n);
+            let mut s = 0.0;
+            for i in lo..hi {
+                s += f(i);
+            }
+            *p = s;
+        });
     partials[..m].iter().sum()
 }
 
@@ -47,7 +68,7 @@ where
 {
     (0..n)
         .into_par_iter()
-        .with_min_len(256)
+        .with_min_len(min_len(n, 256))
         .map(f)
         .reduce(|| f64::INFINITY, f64::min)
 }
