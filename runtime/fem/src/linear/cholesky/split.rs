@@ -99,8 +99,39 @@ pub(super) fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
         return Err(oom(what));
     }
     // SAFETY: see above; length = capacity = `len`, every element initialised.
-    Ok(unsafe { Vec::from_raw_parts(ptr, len, len) })
+    let mut v = unsafe { Vec::from_raw_parts(ptr, len, len) };
+    if len * std::mem::size_of::<f64>() >= HUGE_PAGES_MIN {
+        advise_huge_pages(&mut v);
+    }
+    Ok(v)
 }
+
+/// Buffers from this size on are backed by transparent huge pages.
+const HUGE_PAGES_MIN: usize = 8 << 20;
+
+/// Ask the kernel to back the whole 2 MiB pages inside `v` with transparent
+/// huge pages (`madvise(MADV_HUGEPAGE)`; a hint: where THP is off or the
+/// call fails nothing changes). Given before the first touch, the 1M-triangle
+/// disk's ≈ 1 GB factor is faulted in 2 MiB at a time instead of 4 KiB: its
+/// first factorisation took 4.0 s against 2.0 s for the others, from ≈ 260k
+/// page faults on both threads at once.
+#[cfg(target_os = "linux")]
+fn advise_huge_pages(v: &mut [f64]) {
+    const HUGE: usize = 2 << 20;
+    let start = v.as_mut_ptr() as usize;
+    let end = start + std::mem::size_of_val(v);
+    let (lo, hi) = (start.next_multiple_of(HUGE), end / HUGE * HUGE);
+    if hi > lo {
+        // SAFETY: [lo, hi) lies inside `v`'s allocation; MADV_HUGEPAGE only
+        // changes how the kernel backs those pages, never their contents.
+        unsafe {
+            libc::madvise(lo as *mut libc::c_void, hi - lo, libc::MADV_HUGEPAGE);
+        }
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn advise_huge_pages(_: &mut [f64]) {}
 
 /// Upper-triangular CSC pattern of A[unknowns, unknowns] in the local order
 /// and the slot in A of each of its entries.
