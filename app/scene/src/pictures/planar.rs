@@ -39,9 +39,13 @@ impl Fit2 {
     }
 }
 
+/// Longest screen edge (pixels) of a triangle drawn by [`Picture::splat`].
+const SPLAT_MAX_EDGE: f64 = 1.0;
+
 /// Fill triangles with per-triangle colours (anti-aliased, later triangles
-/// on top: inverted ones may overlap) and, when `edges` and the triangles
-/// are large enough on screen, a faint wireframe.
+/// on top: inverted ones may overlap; sub-pixel triangles are composited
+/// together after the others) and, when `edges` and the triangles are large
+/// enough on screen, a faint wireframe.
 pub(crate) fn fill_tris(
     pic: &mut Picture,
     fit: &Fit2,
@@ -60,9 +64,27 @@ pub(crate) fn fill_tris(
         })
         .sum::<f64>()
         / tris.len().clamp(1, 2000) as f64;
+    // triangles below a pixel are splatted (box filter), the others filled
+    // as anti-aliased paths: a 1M-triangle layout took 1.4 s as paths
+    let mut pieces = Vec::new();
     for (t, c) in tris.iter().zip(colour) {
-        pic.tile(&t.map(|v| scr[v]), *c, 0.6);
+        let p = t.map(|v| scr[v]);
+        let d2 = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).powi(2) + (a.1 - b.1).powi(2);
+        let longest = d2(p[0], p[1]).max(d2(p[1], p[2])).max(d2(p[2], p[0]));
+        if longest < SPLAT_MAX_EDGE * SPLAT_MAX_EDGE {
+            let centre = (
+                (p[0].0 + p[1].0 + p[2].0) / 3.0,
+                (p[0].1 + p[1].1 + p[2].1) / 3.0,
+            );
+            let area = 0.5
+                * ((p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0))
+                    .abs();
+            pieces.push((centre, area, *c));
+        } else {
+            pic.tile(&p, *c, 0.6);
+        }
     }
+    pic.splat(&pieces);
     if edges && mean_edge > 7.0 {
         let segs: Vec<_> = all_edges(tris)
             .into_iter()

@@ -195,3 +195,43 @@ fn chart_with_log_axes_and_legend_outside() {
     let empty = Chart::default().picture(300, 200);
     assert!(ink(&empty, (0, 0, 300, 200), [255, 255, 255]) > 100);
 }
+
+/// A layout of sub-pixel triangles (splatted) covers the same pixels in the
+/// same colour as the same square in large triangles (anti-aliased paths):
+/// interior pixels exactly the fill colour, the background untouched, the
+/// covered area equal to within the one-pixel anti-aliased border.
+#[test]
+fn sub_pixel_triangles_are_splatted_like_the_filled_square() {
+    use super::planar::{Fit2, fill_tris};
+    let draw = |n: usize| {
+        let m = grid_tri(n, n, 1.0, 1.0);
+        let uv: Vec<[f64; 2]> = m.positions.iter().map(|p| [p[0], p[1]]).collect();
+        let mut pic = Picture::new(120, 120, hex(0xffffff));
+        let fit = Fit2::new(&uv, (20.0, 20.0, 80.0, 80.0));
+        let colours = vec![hex(0x3060c0); m.triangles.len()];
+        fill_tris(&mut pic, &fit, &m.triangles, &uv, &colours, false);
+        pic
+    };
+    // 400×400 cells on 80 px: edges 0.2–0.28 px, every triangle splatted
+    let (fine, coarse) = (draw(400), draw(2));
+    let fill = [0x30, 0x60, 0xc0];
+    for (x, y) in [(30, 30), (60, 60), (95, 25)] {
+        // the tent filter's sampling noise, and the paths' anti-aliased
+        // seams: within 2 of 255 levels
+        for got in [fine.rgb(x, y), coarse.rgb(x, y)] {
+            assert!(
+                (0..3).all(|k| got[k].abs_diff(fill[k]) <= 2),
+                "({x}, {y}): {got:?}"
+            );
+        }
+    }
+    for (x, y) in [(5, 5), (110, 60), (60, 115)] {
+        assert_eq!(fine.rgb(x, y), [255; 3], "({x}, {y})");
+    }
+    let (a, b) = (
+        ink(&fine, (0, 0, 120, 120), [255; 3]),
+        ink(&coarse, (0, 0, 120, 120), [255; 3]),
+    );
+    assert!(a.abs_diff(b) <= 4 * 82, "{a} vs {b} inked pixels");
+    assert!(a >= 80 * 80, "{a}");
+}
