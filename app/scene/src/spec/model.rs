@@ -439,8 +439,10 @@ pub struct SolverSpec {
     /// (`ecc_fem::linear::cholesky::ThreadPolicy`; docs/benchmarks/threads.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<ecc_fem::linear::cholesky::ThreadPolicy>,
-    /// Fill-reducing ordering of the Cholesky factor: `block-amd` (default),
-    /// `amd` or `metis` (with the `metis` feature)
+    /// Fill-reducing ordering of the Cholesky factor: `auto` (default:
+    /// `metis` for 2D systems of at least 500k unknowns, `block-amd`
+    /// otherwise), `block-amd`, `amd` or `metis`; the run summary reports the
+    /// one used
     /// (`ecc_fem::linear::ordering::FillOrdering`; docs/benchmarks/ordering.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ordering: Option<ecc_fem::linear::ordering::FillOrdering>,

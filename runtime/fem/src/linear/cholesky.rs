@@ -94,7 +94,10 @@ pub struct CholeskyFactor {
     /// The two-way split factor ([`ThreadPolicy::Split`]); when present,
     /// `l_values` is empty and every factorisation and solve goes through it.
     split: Option<SplitFactor>,
+    /// As asked (the ordering may be `Auto`; reanalyses resolve it again).
     params: CholeskyParams,
+    /// The concrete ordering of the current analysis.
+    ordering: FillOrdering,
     factored: bool,
     symbolic_analyses: usize,
     numeric_factorizations: usize,
@@ -107,6 +110,8 @@ struct Analysis {
     mem: MemBuffer,
     threads: ThreadChooser,
     split: Option<SplitFactor>,
+    /// The concrete ordering used.
+    ordering: FillOrdering,
 }
 
 /// The split factor when `params` asks for it, the pool has two threads and
@@ -134,7 +139,7 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
     let n = pattern.n();
     // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
     let a = SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
-    let perm = permutation(pattern, params.ordering)?;
+    let (perm, ordering_used) = permutation(pattern, params.ordering)?;
     let inv = perm.as_ref().map(|p| {
         let mut inv = vec![0usize; n];
         for (new, &old) in p.iter().enumerate() {
@@ -160,6 +165,7 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
             mem: MemBuffer::new(StackReq::EMPTY),
             threads,
             split,
+            ordering: ordering_used,
         });
     }
     let req = StackReq::any_of(&[Par::Seq, Par::rayon(0)].map(|par| {
@@ -178,6 +184,7 @@ fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemEr
         mem,
         threads,
         split,
+        ordering: ordering_used,
     })
 }
 
@@ -234,6 +241,7 @@ impl CholeskyFactor {
             mem,
             threads,
             split,
+            ordering,
         } = analysis(pattern, params)?;
         Ok(CholeskyFactor {
             symbolic,
@@ -244,6 +252,7 @@ impl CholeskyFactor {
             par: Par::Seq,
             split,
             params,
+            ordering,
             factored: false,
             symbolic_analyses: 1,
             numeric_factorizations: 0,
@@ -266,7 +275,9 @@ impl CholeskyFactor {
             mem,
             threads,
             split,
+            ordering,
         } = analysis(pattern, self.params)?;
+        self.ordering = ordering;
         self.split = split;
         self.symbolic = symbolic;
         self.threads = threads;
@@ -315,9 +326,13 @@ impl CholeskyFactor {
             .map(|s| (s.separator_len(), s.critical_flops()))
     }
 
-    /// The ordering and thread policy this factor was analysed with.
+    /// The ordering and thread policy this factor was analysed with, the
+    /// ordering concrete (a requested [`FillOrdering::Auto`] resolved).
     pub fn params(&self) -> CholeskyParams {
-        self.params
+        CholeskyParams {
+            ordering: self.ordering,
+            ..self.params
+        }
     }
 
     /// For a split factor, the seconds of the phases of its last successful
@@ -772,9 +787,14 @@ mod tests {
                     .unwrap();
             assert_eq!(sys.cholesky().unwrap().params(), params, "{choice:?}");
             let default = LinearSystem::new(&p, choice, AutoLimits::default()).unwrap();
+            // the default `Auto` ordering is reported as the one it used
+            // (block AMD on this small grid)
             assert_eq!(
                 default.cholesky().unwrap().params(),
-                CholeskyParams::default()
+                CholeskyParams {
+                    ordering: FillOrdering::BlockAmd,
+                    ..CholeskyParams::default()
+                }
             );
         }
     }

@@ -39,22 +39,35 @@ pub enum FillOrdering {
     Amd,
     /// Approximate minimum degree on the vertex (supervariable) graph.
     BlockAmd,
-    /// METIS nested dissection on the vertex graph (feature `metis`).
+    /// METIS nested dissection on the vertex graph (feature `metis`, on by
+    /// default).
     Metis,
+    /// By size ([`FillOrdering::auto_choice`]): METIS for 2D systems of at
+    /// least [`METIS_MIN_UNKNOWNS`] unknowns when compiled in, block AMD
+    /// otherwise.
+    Auto,
 }
 
 impl Default for FillOrdering {
-    /// Block AMD: the fill of faer's AMD on these meshes at about half the
-    /// ordering time (docs/benchmarks/ordering.md). METIS has fewer flops on
-    /// the larger meshes but twice as many, smaller supernodes and was not
-    /// faster with faer.
+    /// [`FillOrdering::Auto`] (docs/benchmarks/ordering.md, "METIS by size").
     fn default() -> Self {
-        FillOrdering::BlockAmd
+        FillOrdering::Auto
     }
 }
 
+/// Smallest 2D system (unknowns) that [`FillOrdering::Auto`] orders with
+/// METIS. Measured with the split two-thread factorisation (2026-12-02,
+/// bumpy disks, `ecc-fem` example `ordering --split`): METIS's analysis
+/// costs 0.24 / 0.79 / 2.4 s more than block AMD's at 136k / 377k / 1.0M
+/// unknowns and saves 18 / 81 / 370 ms per factorisation (0.108 → 0.090,
+/// 0.408 → 0.327, 1.55 → 1.18 s), so it pays after 13 / 10 / 7
+/// factorisations; these parameterisations converge in 8–9 Newton steps.
+/// Below (camelhead, armadillo_cut_low) and in 3D (hand.mesh) block AMD is
+/// as fast or faster per solve.
+pub const METIS_MIN_UNKNOWNS: usize = 500_000;
+
 impl FillOrdering {
-    /// Every ordering, compiled in or not.
+    /// Every concrete ordering, compiled in or not (not [`FillOrdering::Auto`]).
     pub const ALL: [FillOrdering; 3] = [
         FillOrdering::Amd,
         FillOrdering::BlockAmd,
@@ -67,17 +80,34 @@ impl FillOrdering {
             FillOrdering::Amd => "amd",
             FillOrdering::BlockAmd => "block-amd",
             FillOrdering::Metis => "metis",
+            FillOrdering::Auto => "auto",
         }
     }
 
     /// The ordering with this stable name.
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|o| o.name() == name)
+        Self::ALL
+            .into_iter()
+            .chain([FillOrdering::Auto])
+            .find(|o| o.name() == name)
     }
 
     /// Whether this build can compute the ordering.
     pub fn is_available(self) -> bool {
         !matches!(self, FillOrdering::Metis) || cfg!(feature = "metis")
+    }
+
+    /// What [`FillOrdering::Auto`] uses for `n` unknowns in `groups`
+    /// vertex groups (supervariables): METIS when it is compiled in, the
+    /// system is 2D (fewer than 2.5 unknowns per group) and
+    /// n ≥ [`METIS_MIN_UNKNOWNS`]; block AMD otherwise.
+    pub fn auto_choice(n: usize, groups: usize) -> FillOrdering {
+        let two_d = 2 * n < 5 * groups;
+        if FillOrdering::Metis.is_available() && two_d && n >= METIS_MIN_UNKNOWNS {
+            FillOrdering::Metis
+        } else {
+            FillOrdering::BlockAmd
+        }
     }
 }
 
@@ -228,31 +258,37 @@ fn amd_order(n: usize, cp: &[usize], ri: &[usize]) -> Result<Vec<usize>, FemErro
 
 /// The fill-reducing permutation (`perm[new] = old`) of `pattern` by
 /// `ordering`, or `None` for [`FillOrdering::Amd`] (faer computes it inside
-/// the symbolic analysis).
+/// the symbolic analysis), and the concrete ordering used
+/// ([`FillOrdering::Auto`] resolved).
 pub(crate) fn permutation(
     pattern: &Pattern,
     ordering: FillOrdering,
-) -> Result<Option<Vec<usize>>, FemError> {
-    match ordering {
-        FillOrdering::Amd => Ok(None),
-        FillOrdering::BlockAmd => {
-            let sv = Supervariables::of(pattern);
-            let (cp, ri) = sv.upper();
-            Ok(Some(sv.expand(&amd_order(sv.len(), &cp, &ri)?)))
-        }
-        FillOrdering::Metis => metis_permutation(pattern).map(Some),
+) -> Result<(Option<Vec<usize>>, FillOrdering), FemError> {
+    if ordering == FillOrdering::Amd {
+        return Ok((None, ordering));
     }
+    let sv = Supervariables::of(pattern);
+    let used = match ordering {
+        FillOrdering::Auto => FillOrdering::auto_choice(pattern.n(), sv.len()),
+        o => o,
+    };
+    let perm = if used == FillOrdering::Metis {
+        metis_permutation(&sv)?
+    } else {
+        let (cp, ri) = sv.upper();
+        sv.expand(&amd_order(sv.len(), &cp, &ri)?)
+    };
+    Ok((Some(perm), used))
 }
 
 #[cfg(feature = "metis")]
-fn metis_permutation(pattern: &Pattern) -> Result<Vec<usize>, FemError> {
-    let sv = Supervariables::of(pattern);
-    let gperm = metis_nd::node_nd(&sv)?;
+fn metis_permutation(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
+    let gperm = metis_nd::node_nd(sv)?;
     Ok(sv.expand(&gperm))
 }
 
 #[cfg(not(feature = "metis"))]
-fn metis_permutation(_: &Pattern) -> Result<Vec<usize>, FemError> {
+fn metis_permutation(_: &Supervariables) -> Result<Vec<usize>, FemError> {
     Err(FemError::Symbolic(
         "the `metis` ordering needs ecc-fem built with the `metis` feature".into(),
     ))
@@ -365,11 +401,37 @@ pub(crate) mod tests {
         assert!(FillOrdering::default().is_available());
     }
 
+    /// `Auto`: METIS only for large 2D systems and when compiled in; a
+    /// small grid gets exactly block AMD's permutation.
+    #[test]
+    fn auto_is_block_amd_below_the_size_and_in_3d() {
+        use super::METIS_MIN_UNKNOWNS as M;
+        let metis = if cfg!(feature = "metis") {
+            FillOrdering::Metis
+        } else {
+            FillOrdering::BlockAmd
+        };
+        assert_eq!(FillOrdering::auto_choice(M, M / 2), metis);
+        assert_eq!(
+            FillOrdering::auto_choice(M - 2, M / 2 - 1),
+            FillOrdering::BlockAmd
+        );
+        assert_eq!(FillOrdering::auto_choice(3 * M, M), FillOrdering::BlockAmd);
+        assert_eq!(FillOrdering::default(), FillOrdering::Auto);
+        assert_eq!(FillOrdering::from_name("auto"), Some(FillOrdering::Auto));
+        let p = grid(7, 5, 2);
+        let (auto, used) = permutation(&p, FillOrdering::Auto).unwrap();
+        assert_eq!(used, FillOrdering::BlockAmd);
+        assert_eq!(auto, permutation(&p, FillOrdering::BlockAmd).unwrap().0);
+    }
+
     #[test]
     fn every_available_ordering_is_a_permutation_keeping_blocks() {
         let p = grid(7, 5, 2);
         for o in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
-            let Some(perm) = permutation(&p, o).unwrap() else {
+            let (perm, used) = permutation(&p, o).unwrap();
+            assert_eq!(used, o);
+            let Some(perm) = perm else {
                 assert_eq!(o, FillOrdering::Amd);
                 continue;
             };

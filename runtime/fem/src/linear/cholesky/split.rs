@@ -81,57 +81,20 @@ pub(super) fn oom(what: &str) -> FemError {
     FemError::Symbolic(format!("out of memory for {what}"))
 }
 
-/// `len` zeros, or an out-of-memory error naming `what`. Allocated zeroed
-/// (`calloc`): a large block is mapped from the OS already zero and its pages
-/// are first touched by the factorisation that fills them, on the thread
-/// that factorises that half, instead of being written with zeros here, on
-/// one thread (the 1M-triangle disk's factor: ≈ 1 GB, 0.3–2.5 s of setup).
+/// `len` zeros, or an out-of-memory error naming `what`. The zeros are
+/// written here, in the analysis (the two halves are analysed at once), so
+/// every page is touched before the first numeric factorisation. Measured on
+/// the 1M-triangle disk (2026-12-02): storage left untouched (`calloc`) made
+/// the first factorisation 3.6 s against 1.5 s for the later ones, and
+/// backing it with transparent huge pages (`madvise`) did not help (direct
+/// compaction on fault); touched here it costs ≈ 0.35 s of setup and the
+/// first factorisation takes 1.65 s.
 pub(super) fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
-    if len == 0 {
-        return Ok(Vec::new());
-    }
-    let layout = std::alloc::Layout::array::<f64>(len).map_err(|_| oom(what))?;
-    // SAFETY: `layout` has a non-zero size. A non-null result is a zeroed
-    // block of the global allocator with exactly the layout of a Vec<f64>
-    // of capacity `len`, and all-zero bytes are the f64 value 0.0.
-    let ptr = unsafe { std::alloc::alloc_zeroed(layout) }.cast::<f64>();
-    if ptr.is_null() {
-        return Err(oom(what));
-    }
-    // SAFETY: see above; length = capacity = `len`, every element initialised.
-    let mut v = unsafe { Vec::from_raw_parts(ptr, len, len) };
-    if len * std::mem::size_of::<f64>() >= HUGE_PAGES_MIN {
-        advise_huge_pages(&mut v);
-    }
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).map_err(|_| oom(what))?;
+    v.resize(len, 0.0);
     Ok(v)
 }
-
-/// Buffers from this size on are backed by transparent huge pages.
-const HUGE_PAGES_MIN: usize = 8 << 20;
-
-/// Ask the kernel to back the whole 2 MiB pages inside `v` with transparent
-/// huge pages (`madvise(MADV_HUGEPAGE)`; a hint: where THP is off or the
-/// call fails nothing changes). Given before the first touch, the 1M-triangle
-/// disk's ≈ 1 GB factor is faulted in 2 MiB at a time instead of 4 KiB: its
-/// first factorisation took 4.0 s against 2.0 s for the others, from ≈ 260k
-/// page faults on both threads at once.
-#[cfg(target_os = "linux")]
-fn advise_huge_pages(v: &mut [f64]) {
-    const HUGE: usize = 2 << 20;
-    let start = v.as_mut_ptr() as usize;
-    let end = start + std::mem::size_of_val(v);
-    let (lo, hi) = (start.next_multiple_of(HUGE), end / HUGE * HUGE);
-    if hi > lo {
-        // SAFETY: [lo, hi) lies inside `v`'s allocation; MADV_HUGEPAGE only
-        // changes how the kernel backs those pages, never their contents.
-        unsafe {
-            libc::madvise(lo as *mut libc::c_void, hi - lo, libc::MADV_HUGEPAGE);
-        }
-    }
-}
-
-#[cfg(not(target_os = "linux"))]
-fn advise_huge_pages(_: &mut [f64]) {}
 
 /// Upper-triangular CSC pattern of A[unknowns, unknowns] in the local order
 /// and the slot in A of each of its entries.
