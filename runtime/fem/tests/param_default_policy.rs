@@ -75,8 +75,10 @@ fn the_default_parameterisation_projects_in_f_space() {
         for p in &mut mesh.positions {
             p[2] = 0.6 * (p[0] * p[0] - 0.5 * p[1] * p[1]) + 0.3 * p[0] * p[1];
         }
-        let mut opts = ParamOptions::default();
-        opts.projection = projection;
+        let mut opts = ParamOptions {
+            projection,
+            ..Default::default()
+        };
         opts.newton.filter_policy = policy;
         opts.newton.tol_abs = 1e-8;
         let p = parameterize(&mesh, Arc::new(SymmetricDirichlet), &opts).unwrap();
