@@ -12,33 +12,9 @@
 //!   σi + σj = 0 and σ = 0 are hit exactly): the same two rules.
 
 use ecc_runtime::reference::cases::{compose, hard_cases_2d, hard_cases_3d, rng, rotation};
-use ecc_runtime::{Dim, Energy, Filter, Nodes, Rest, Space, element_curvature, element_eval};
+use ecc_runtime::reference::curvature_reference as reference;
+use ecc_runtime::{Dim, Energy, Nodes, Rest, Space, element_curvature};
 use nalgebra::SVector;
-
-/// The reference and its rounding scale |q|‖H‖max‖dl‖².
-fn reference<const D: usize>(
-    e: &dyn Energy<D>,
-    rest: &Rest<D>,
-    x: &Nodes<D>,
-    dx: &Nodes<D>,
-) -> (f64, f64)
-where
-    Space<D>: Dim<D>,
-{
-    let ev = element_eval(e, rest, x, Filter::None, true);
-    if !ev.psi.is_finite() {
-        return (f64::INFINITY, 0.0);
-    }
-    let dl: Vec<f64> = dx.as_ref().iter().flatten().copied().collect();
-    let (mut acc, mut hmax) = (0.0, 0.0f64);
-    for (a, &da) in dl.iter().enumerate() {
-        for (b, &db) in dl.iter().enumerate() {
-            acc += da * ev.hess[(a, b)] * db;
-            hmax = hmax.max(ev.hess[(a, b)].abs());
-        }
-    }
-    (acc, hmax * dl.iter().map(|v| v * v).sum::<f64>())
-}
 
 /// Counts of the comparisons made.
 #[derive(Default, Debug)]

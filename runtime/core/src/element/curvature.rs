@@ -162,36 +162,10 @@ mod tests {
     use super::element_curvature;
     use crate::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
     use crate::reference::cases::{compose, hard_cases_2d, hard_cases_3d, rng, rotation};
-    use crate::{Dim, Energy, Filter, Nodes, Rest, Space, element_eval};
+    use crate::reference::curvature_reference as reference;
+    use crate::{Dim, Energy, Nodes, Rest, Space};
     use rand::Rng;
     use rand_chacha::ChaCha8Rng;
-
-    /// dlᵀ H dl with the raw element Hessian, +∞ for a non-finite ψ (the
-    /// trust-region pass before `element_curvature`), and |q|‖H‖max‖dl‖².
-    fn reference<const D: usize>(
-        e: &dyn Energy<D>,
-        rest: &Rest<D>,
-        x: &Nodes<D>,
-        dx: &Nodes<D>,
-    ) -> (f64, f64)
-    where
-        Space<D>: Dim<D>,
-    {
-        let ev = element_eval(e, rest, x, Filter::None, true);
-        if !ev.psi.is_finite() {
-            return (f64::INFINITY, 0.0);
-        }
-        let dl: Vec<f64> = dx.as_ref().iter().flatten().copied().collect();
-        let n = dl.len();
-        let (mut acc, mut hmax) = (0.0, 0.0f64);
-        for a in 0..n {
-            for b in 0..n {
-                acc += dl[a] * ev.hess[(a, b)] * dl[b];
-                hmax = hmax.max(ev.hess[(a, b)].abs());
-            }
-        }
-        (acc, hmax * dl.iter().map(|v| v * v).sum::<f64>())
-    }
 
     /// Checks every energy at every hard case; returns (compared, non-finite).
     fn check<const D: usize>(

@@ -76,3 +76,31 @@ pub fn psi_f<E: Energy<D> + ?Sized, const D: usize>(e: &E, f: &SMatrix<f64, D, D
     }
     e.psi(&signed_svd(f).sigma)
 }
+
+/// The reference of [`crate::element_curvature`]: dlᵀ H dl with the raw
+/// element Hessian of [`crate::element_eval`] (`Filter::None`; +∞ for a
+/// non-finite ψ, as the trust-region pass before it), and the rounding
+/// scale |q|‖H‖max‖dl‖² of that sum.
+pub fn curvature_reference<const D: usize>(
+    e: &dyn Energy<D>,
+    rest: &crate::Rest<D>,
+    x: &crate::Nodes<D>,
+    dx: &crate::Nodes<D>,
+) -> (f64, f64)
+where
+    Space<D>: Dim<D>,
+{
+    let ev = crate::element_eval(e, rest, x, Filter::None, true);
+    if !ev.psi.is_finite() {
+        return (f64::INFINITY, 0.0);
+    }
+    let dl: Vec<f64> = dx.as_ref().iter().flatten().copied().collect();
+    let (mut acc, mut hmax) = (0.0, 0.0f64);
+    for (a, &da) in dl.iter().enumerate() {
+        for (b, &db) in dl.iter().enumerate() {
+            acc += da * ev.hess[(a, b)] * db;
+            hmax = hmax.max(ev.hess[(a, b)].abs());
+        }
+    }
+    (acc, hmax * dl.iter().map(|v| v * v).sum::<f64>())
+}
