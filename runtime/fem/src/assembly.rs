@@ -21,11 +21,12 @@ use crate::error::FemError;
 use crate::order::choose_order;
 use crate::parallel::{SharedMut, min_indexed, min_len, sum_indexed};
 
+use crate::pattern::{NO_SLOT, Pattern, StencilSet, TermPlan, build, validate};
+use crate::term::{MAX_STENCIL_DOFS, Term};
+
 /// Values zeroed per task before an assembly (a pass of stores; splitting a
 /// smaller one costs more than it saves).
 const ZERO_GRAIN: usize = 1 << 16;
-use crate::pattern::{NO_SLOT, Pattern, StencilSet, TermPlan, build, validate};
-use crate::term::{MAX_STENCIL_DOFS, Term};
 
 /// A stencil produced a non-finite value where a finite one was required.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
