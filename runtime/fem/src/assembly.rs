@@ -20,7 +20,6 @@ use crate::dofs::DofMap;
 use crate::error::FemError;
 use crate::order::choose_order;
 use crate::parallel::{SharedMut, min_indexed, min_len, sum_indexed};
-
 use crate::pattern::{NO_SLOT, Pattern, StencilSet, TermPlan, build, validate};
 use crate::term::{MAX_STENCIL_DOFS, Term};
 
