@@ -1,5 +1,7 @@
 //! Flat drawings of planar triangle meshes (deformations and uv layouts).
 
+use ecc_mesh::geometry::signed_area_uv;
+
 use super::fibres::{self, Fibres, Segment, StretchScale};
 use super::image::{Orient, Picture, Rgb, hex};
 use super::{View, colour_bar, heat, sv2, title, title_height};
@@ -76,9 +78,7 @@ pub(crate) fn fill_tris(
                 (p[0].0 + p[1].0 + p[2].0) / 3.0,
                 (p[0].1 + p[1].1 + p[2].1) / 3.0,
             );
-            let area = 0.5
-                * ((p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[1].1 - p[0].1) * (p[2].0 - p[0].0))
-                    .abs();
+            let area = signed_area_uv(p[0].into(), p[1].into(), p[2].into()).abs();
             pieces.push((centre, area, *c));
         } else {
             pic.tile(&p, *c, 0.6);
