@@ -43,6 +43,7 @@ use crate::dim::{Dim, Nodes, Space};
 use crate::energy::Energy;
 use crate::filter::Filter;
 use crate::spectral::{Spectral, pair_indices};
+use crate::svd::conformal_parts;
 use crate::svd::signed_svd;
 use nalgebra::SMatrix;
 
@@ -115,18 +116,14 @@ fn frame_2d<const D: usize>(
     f: &SMatrix<f64, D, D>,
     df: &SMatrix<f64, D, D>,
 ) -> Option<([f64; D], SMatrix<f64, D, D>)> {
-    let parts = |m: &SMatrix<f64, D, D>| {
-        let (a, b, c, d) = (m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]);
-        (0.5 * (a + d), 0.5 * (c - b), 0.5 * (a - d), 0.5 * (c + b))
-    };
-    let (e, h, p, g) = parts(f);
+    let [e, h, p, g] = conformal_parts(f);
     let (q, r) = (e.hypot(h), p.hypot(g));
     let sigma = [q + r, q - r];
     if !(sigma[0].is_finite() && sigma[1].is_finite()) {
         return None;
     }
     let ((c2, s2), (c1, s1)) = (unit(e, h, q), unit(p, g, r));
-    let (de, dh, dp, dg) = parts(df);
+    let [de, dh, dp, dg] = conformal_parts(df);
     let (te, th) = (de * c2 + dh * s2, dh * c2 - de * s2);
     let (tp, tg) = (dp * c1 + dg * s1, dg * c1 - dp * s1);
     let t = [[te + tp, tg - th], [tg + th, te - tp]];

@@ -21,6 +21,7 @@ mod two;
 use nalgebra::{Matrix2, Matrix3, SMatrix};
 
 pub use three::signed_svd3;
+pub(crate) use two::conformal_parts;
 pub use two::signed_svd2;
 
 /// A signed SVD F = U diag(σ) Vᵀ with U, V ∈ SO(D).

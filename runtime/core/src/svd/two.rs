@@ -13,18 +13,24 @@
 //! atan2(0, 0) = 0 picks a valid rotation.
 
 use super::{Svd, non_finite};
-use nalgebra::Matrix2;
+use nalgebra::{Matrix2, SMatrix};
+
+/// (E, H, P, G) of the module docs for the leading 2×2 block of `m`: the
+/// similarity part E·I + H·J and the anti-similarity part P·K + G·L
+/// (also used to rotate a direction into the SVD's frame,
+/// `element::curvature`).
+#[inline]
+pub(crate) fn conformal_parts<const D: usize>(m: &SMatrix<f64, D, D>) -> [f64; 4] {
+    let (a, b, c, d) = (m[(0, 0)], m[(0, 1)], m[(1, 0)], m[(1, 1)]);
+    [0.5 * (a + d), 0.5 * (c - b), 0.5 * (a - d), 0.5 * (c + b)]
+}
 
 /// Signed SVD of a 2×2 matrix: U, V ∈ SO(2), σ_0 ≥ |σ_1|, σ_1 < 0 iff det F < 0.
 pub fn signed_svd2(f: &Matrix2<f64>) -> Svd<2> {
     if !f.iter().all(|x| x.is_finite()) {
         return non_finite();
     }
-    let (a, b, c, d) = (f[(0, 0)], f[(0, 1)], f[(1, 0)], f[(1, 1)]);
-    let e = 0.5 * (a + d);
-    let h = 0.5 * (c - b);
-    let p = 0.5 * (a - d);
-    let g = 0.5 * (c + b);
+    let [e, h, p, g] = conformal_parts(f);
     let q = e.hypot(h);
     let r = p.hypot(g);
     let a2 = h.atan2(e);
