@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use ecc_fem::elastic::Projection;
 use ecc_fem::{Assembler, DofMap, Elastic, Filter, Term, Tet, Tri};
+use ecc_runtime::Energy;
 use ecc_runtime::energies::{Arap, StableNeoHookean, SymmetricDirichlet};
 
 /// Forwards everything to `inner` but keeps the default `Term::curvature`.
@@ -146,6 +147,21 @@ fn direction<const D: usize>(n: usize, fixed: &[usize]) -> Vec<[f64; D]> {
 
 const PROJECTIONS: [Projection; 2] = [Projection::FSpace, Projection::Element];
 
+/// The elastic term of `energy` over the surface triangles, projected by
+/// `projection`.
+fn surface<E: Energy<2> + 'static>(
+    energy: E,
+    rest: &[[f64; 3]],
+    tris: &[[usize; 3]],
+    projection: Projection,
+) -> Box<dyn Term<2>> {
+    Box::new(
+        Elastic::<_, Tri>::surface(Arc::new(energy), rest, tris)
+            .unwrap()
+            .with_projection(projection),
+    )
+}
+
 #[test]
 fn triangles_override_equals_the_default_for_both_projections() {
     let mesh = ecc_mesh::disk_tri(6, 1.0);
@@ -165,22 +181,8 @@ fn triangles_override_equals_the_default_for_both_projections() {
     let fixed = [0usize, 1];
     let d = direction::<2>(x.len(), &fixed);
     for projection in PROJECTIONS {
-        let sd = || -> Box<dyn Term<2>> {
-            let e = Arc::new(SymmetricDirichlet);
-            Box::new(
-                Elastic::<_, Tri>::surface(e, &rest, &tris)
-                    .unwrap()
-                    .with_projection(projection),
-            )
-        };
-        let arap = || -> Box<dyn Term<2>> {
-            let e = Arc::new(Arap);
-            Box::new(
-                Elastic::<_, Tri>::surface(e, &rest, &tris)
-                    .unwrap()
-                    .with_projection(projection),
-            )
-        };
+        let sd = || surface(SymmetricDirichlet, &rest, &tris, projection);
+        let arap = || surface(Arap, &rest, &tris, projection);
         for (name, make) in [
             ("sd", &sd as &dyn Fn() -> Box<dyn Term<2>>),
             ("arap", &arap),
@@ -209,14 +211,7 @@ fn an_inverted_barrier_element_is_infinite_both_ways() {
     x[0] = [3.0, 0.2];
     let d = direction::<2>(x.len(), &[]);
     for projection in PROJECTIONS {
-        let sd = || -> Box<dyn Term<2>> {
-            let e = Arc::new(SymmetricDirichlet);
-            Box::new(
-                Elastic::<_, Tri>::surface(e, &rest, &tris)
-                    .unwrap()
-                    .with_projection(projection),
-            )
-        };
+        let sd = || surface(SymmetricDirichlet, &rest, &tris, projection);
         let out = compare(sd, &x, &d, &[]);
         assert!(out.infinite > 0, "{projection:?}: nothing inverted");
         assert_eq!(out.total, f64::INFINITY);
