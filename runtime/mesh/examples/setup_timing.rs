@@ -1,5 +1,5 @@
 //! Setup of the 1M-triangle parameterisation (issue #11, item 6): read an
-//! OBJ, validate it, Tutte-embed it — each timed, best of `REPEATS` runs.
+//! OBJ, validate it, Tutte-embed it — each timed, best of `timing::REPEATS` runs.
 //!
 //! `cargo run --release -p ecc-mesh --example setup_timing [RINGS] [DIR]`
 //!
@@ -8,26 +8,15 @@
 //! written once to DIR/bumpy_disk_RINGS.obj (default DIR: the temp dir).
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use ecc_mesh::{
     TutteWeights, ValidationOptions, disk_tri, read_tri_mesh, tutte_embedding, validate_tri,
     write_obj,
 };
 
-const REPEATS: usize = 3;
-
-fn best<T>(mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut out = None;
-    let mut t_best = f64::INFINITY;
-    for _ in 0..REPEATS {
-        let t = Instant::now();
-        let r = f();
-        t_best = t_best.min(t.elapsed().as_secs_f64());
-        out = Some(r);
-    }
-    (t_best, out.expect("REPEATS > 0"))
-}
+#[path = "common/best.rs"]
+mod timing;
+use timing::best;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);

@@ -1,6 +1,6 @@
 //! Output of the 1M-triangle parameterisation (issue #11, item 6): write
 //! the bumpy disk as OBJ with uvs (as `ecc sim` writes its frames) and as
-//! VTK with one point-data array — each timed, best of `REPEATS` runs —
+//! VTK with one point-data array — each timed, best of `timing::REPEATS` runs —
 //! then read the OBJ back and check the round trip is bit-exact. For scale,
 //! the time to write the OBJ's bytes alone (atomically) is printed too.
 //!
@@ -11,23 +11,12 @@
 //! DIR/write_timing_RINGS.obj and .vtk and deletes them afterwards.
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use ecc_mesh::{read_tri_mesh, write_obj, write_vtk_tri};
 
-const REPEATS: usize = 3;
-
-fn best<T>(mut f: impl FnMut() -> T) -> (f64, T) {
-    let mut out = None;
-    let mut t_best = f64::INFINITY;
-    for _ in 0..REPEATS {
-        let t = Instant::now();
-        let r = f();
-        t_best = t_best.min(t.elapsed().as_secs_f64());
-        out = Some(r);
-    }
-    (t_best, out.expect("REPEATS > 0"))
-}
+#[path = "common/best.rs"]
+mod timing;
+use timing::best;
 
 fn bits2(p: &[[f64; 2]]) -> Vec<[u64; 2]> {
     p.iter().map(|q| q.map(f64::to_bits)).collect()
