@@ -63,3 +63,41 @@ fn a_bad_policy_is_a_located_error_with_a_failing_exit_code() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("bad.toml:8"), "{err}");
 }
+
+/// `ordering = "geometric"` (nested dissection from the rest positions)
+/// runs in a parameterisation and in a simulation scene, is reported under
+/// `linear`, and reaches the same minimum as the default ordering.
+#[test]
+fn the_geometric_ordering_runs_in_both_kinds_of_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = sim_json("", "geo_base", "2", dir.path());
+    let geo = sim_json("ordering = \"geometric\"", "geo", "2", dir.path());
+    assert_eq!(geo["linear"]["ordering"], "geometric", "{}", geo["linear"]);
+    assert_eq!(geo["frames"][1]["converged"], true);
+    let e = |s: &serde_json::Value| s["frames"][1]["elastic_energy"].as_f64().unwrap();
+    assert!(
+        (e(&base) - e(&geo)).abs() <= 1e-9 * e(&base),
+        "{} vs {}",
+        e(&base),
+        e(&geo)
+    );
+
+    // a hanging 2D disk (the simulation path of `sim::build`)
+    let scene = dir.path().join("hang.toml");
+    std::fs::write(
+        &scene,
+        "frames = 2\n[mesh]\ngenerate = \"disk\"\nrings = 4\n[energy]\nname = \"arap\"\n\
+         [effects]\ngravity = [0, -0.1]\n[[effects.handles]]\nids = [0]\n\
+         [output]\nformats = []\npictures = false\n\
+         [solver]\nlinear = \"cholesky\"\nordering = \"geometric\"\n",
+    )
+    .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_ecc"))
+        .args(["sim", scene.to_str().unwrap(), "--quiet", "--json", "-o"])
+        .arg(dir.path().join("hang"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(s["linear"]["ordering"], "geometric", "{}", s["linear"]);
+}

@@ -6,8 +6,8 @@
 //! cargo run --release -p ecc-benches --features metis --bin factor_bench -- FILE.mtx [--repeats R] [--pool T] [--ordering NAME]… [--threads NAME]…
 //! ```
 //!
-//! For every fill-reducing ordering compiled in (`FillOrdering::ALL`, or
-//! the `--ordering` ones) the symbolic analysis is done once per thread
+//! For every fill-reducing ordering compiled in that needs no vertex
+//! positions (`FillOrdering::ALL` but `geometric`, or the `--ordering` ones) the symbolic analysis is done once per thread
 //! policy (`ThreadPolicy::ALL`, or the `--threads` ones), then each factor
 //! is factorised twice untimed (warm-up; the `auto` policy's two probes)
 //! and R times timed (default 5), the policies taking turns so the load of
@@ -79,9 +79,10 @@ fn args() -> Result<Args, String> {
         return Err(USAGE.into());
     }
     if a.orderings.is_empty() {
+        // a matrix file has no vertex positions: not `geometric`
         a.orderings = FillOrdering::ALL
             .into_iter()
-            .filter(|o| o.is_available())
+            .filter(|o| o.is_available() && !o.needs_positions())
             .collect();
     }
     if a.threads.is_empty() {

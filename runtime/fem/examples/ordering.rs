@@ -28,12 +28,20 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use ecc_fem::linear::cholesky::{CholeskyFactor, CholeskyParams, ThreadPolicy};
-use ecc_fem::linear::ordering::FillOrdering;
+use ecc_fem::linear::ordering::{Coordinates, FillOrdering};
 use ecc_fem::{Assembler, DofMap, Elastic, Pattern, Term};
 use ecc_mesh::{AnyMesh, read_mesh};
 use ecc_runtime::energies::{StableNeoHookean, SymmetricDirichlet};
 
-fn pattern(spec: &str) -> Result<Pattern, String> {
+/// The vertex of every unknown, in the assembler's (renumbered) order.
+fn vertex_of<const D: usize>(a: &Assembler<D>) -> impl Iterator<Item = usize> + '_ {
+    let dofs = a.dofs();
+    (0..dofs.n_unknowns()).map(move |u| dofs.dof(u) / D)
+}
+
+/// The Newton pattern of the mesh and the position of every unknown (for
+/// the `geometric` ordering).
+fn pattern(spec: &str) -> Result<(Pattern, Coordinates), String> {
     let mesh = match spec.strip_prefix("disk:") {
         Some(rings) => {
             let rings = rings.parse().map_err(|e| format!("{spec}: {e}"))?;
@@ -41,14 +49,15 @@ fn pattern(spec: &str) -> Result<Pattern, String> {
         }
         None => read_mesh(spec).map_err(|e| e.to_string())?,
     };
-    let p = match mesh {
+    let (p, coords) = match mesh {
         AnyMesh::Tri(m) => {
             let term = Elastic::surface(Arc::new(SymmetricDirichlet), &m.positions, &m.triangles)
                 .map_err(|e| e.to_string())?;
             let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(term)];
             let dofs = DofMap::all_free(m.positions.len(), 2).map_err(|e| e.to_string())?;
             let a = Assembler::new(&terms, dofs).map_err(|e| e.to_string())?;
-            a.pattern().clone()
+            let v = vertex_of(&a);
+            (a.pattern().clone(), v.map(|v| m.positions[v]).collect())
         }
         AnyMesh::Tet(m) => {
             let term = Elastic::new(
@@ -60,10 +69,11 @@ fn pattern(spec: &str) -> Result<Pattern, String> {
             let terms: Vec<Box<dyn Term<3>>> = vec![Box::new(term)];
             let dofs = DofMap::all_free(m.positions.len(), 3).map_err(|e| e.to_string())?;
             let a = Assembler::new(&terms, dofs).map_err(|e| e.to_string())?;
-            a.pattern().clone()
+            let v = vertex_of(&a);
+            (a.pattern().clone(), v.map(|v| m.positions[v]).collect())
         }
     };
-    Ok(p)
+    Ok((p, coords))
 }
 
 /// Off-diagonals −1, diagonal = 1 + number of off-diagonals in the row: SPD.
@@ -104,7 +114,14 @@ fn best_of(repeats: usize, fs: &mut [&mut dyn FnMut()]) -> Vec<f64> {
 }
 
 /// The `--split` comparison (see the module docs).
-fn split_row(spec: &str, p: &Pattern, v: &[f64], repeats: usize, ordering: FillOrdering) {
+fn split_row(
+    spec: &str,
+    (p, coords): (&Pattern, &Coordinates),
+    v: &[f64],
+    repeats: usize,
+    ordering: FillOrdering,
+) {
+    let analyze = |params| CholeskyFactor::analyze_at(p, params, Some(coords.clone())).unwrap();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -114,17 +131,17 @@ fn split_row(spec: &str, p: &Pattern, v: &[f64], repeats: usize, ordering: FillO
         threads: ThreadPolicy::Sequential,
     };
     let t = Instant::now();
-    let mut seq1 = one.install(|| CholeskyFactor::analyze_with(p, seq_params).unwrap());
+    let mut seq1 = one.install(|| analyze(seq_params));
     let t_seq = t.elapsed().as_secs_f64();
-    let mut seq2 = CholeskyFactor::analyze_with(p, seq_params).unwrap();
+    let mut seq2 = analyze(seq_params);
     let t = Instant::now();
     let split_params = CholeskyParams {
         ordering,
         threads: ThreadPolicy::Split,
     };
-    let mut split = CholeskyFactor::analyze_with(p, split_params).unwrap();
+    let mut split = analyze(split_params);
     let t_split = t.elapsed().as_secs_f64();
-    let mut split1 = CholeskyFactor::analyze_with(p, split_params).unwrap();
+    let mut split1 = analyze(split_params);
     let Some((k, critical)) = split.split() else {
         println!("{spec}: not split (flops {:.3e})", split.factor_flops());
         return;
@@ -196,7 +213,7 @@ fn main() {
         std::process::exit(2);
     };
     let repeats: usize = args.get(1).and_then(|r| r.parse().ok()).unwrap_or(3);
-    let p = match pattern(spec) {
+    let (p, coords) = match pattern(spec) {
         Ok(p) => p,
         Err(e) => {
             eprintln!("{e}");
@@ -209,7 +226,7 @@ fn main() {
             .get(at + 1)
             .and_then(|o| FillOrdering::from_name(o))
             .unwrap_or_default();
-        split_row(spec, &p, &v, repeats, ordering);
+        split_row(spec, (&p, &coords), &v, repeats, ordering);
         return;
     }
     println!(
@@ -225,7 +242,8 @@ fn main() {
     for ordering in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
         let mk = |threads| {
             let t = Instant::now();
-            let f = CholeskyFactor::analyze_with(&p, CholeskyParams { ordering, threads }).unwrap();
+            let params = CholeskyParams { ordering, threads };
+            let f = CholeskyFactor::analyze_at(&p, params, Some(coords.clone())).unwrap();
             (f, t.elapsed().as_secs_f64())
         };
         let (mut seq, t_an) = mk(ThreadPolicy::Sequential);

@@ -25,6 +25,7 @@ use ecc_mesh::TetMesh;
 use ecc_runtime::Energy;
 use serde::{Deserialize, Serialize};
 
+use crate::dofs::DofMap;
 use crate::elastic::{Elastic, Tet};
 use crate::error::FemError;
 use crate::newton::params::NewtonParams;
@@ -238,7 +239,8 @@ impl HandleDeformation {
     ) -> Result<Self, FemError> {
         let elastic = Elastic::<E, Tet>::new(energy, &mesh.positions, &mesh.tets)?;
         let terms: Vec<Box<dyn Term<3>>> = vec![Box::new(elastic)];
-        let solver = NewtonSolver::new(mesh.positions.len(), terms, handles, params)?;
+        let dofs = DofMap::from_fixed_vertices(mesh.positions.len(), 3, handles)?;
+        let solver = NewtonSolver::with_geometry(terms, dofs, params, &mesh.positions)?;
         Ok(HandleDeformation {
             solver,
             tets: mesh.tets.clone(),

@@ -32,6 +32,7 @@ use ecc_mesh::{TriMesh, TutteWeights, tutte_embedding};
 use ecc_runtime::Energy;
 use serde::{Deserialize, Serialize};
 
+use crate::dofs::DofMap;
 use crate::elastic::{Elastic, Projection, Tri};
 use crate::error::FemError;
 use crate::newton::params::{FilterPolicy, NewtonParams};
@@ -238,7 +239,8 @@ fn build_solver<E: Energy<2> + ?Sized + 'static>(
         newton.energy_scale = 1.0 / rest_area;
     }
     let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(elastic)];
-    let solver = NewtonSolver::new(mesh.positions.len(), terms, &[], newton)?;
+    let dofs = DofMap::all_free(mesh.positions.len(), 2)?;
+    let solver = NewtonSolver::with_geometry(terms, dofs, newton, &mesh.positions)?;
     let scales = Scales {
         position_scale,
         rest_area,

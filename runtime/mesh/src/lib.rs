@@ -88,6 +88,7 @@
 //! ```
 
 pub mod data;
+pub mod dissection;
 pub mod error;
 pub mod fibre;
 pub mod generate;

@@ -24,7 +24,7 @@ use std::sync::Arc;
 
 use ecc_fem::elastic::Projection;
 use ecc_fem::param::ParamOptions;
-use ecc_fem::{Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
+use ecc_fem::{DofMap, Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term};
 use ecc_runtime::FibreEnergy;
 
 use super::engine::{Engine, Slots};
@@ -396,7 +396,15 @@ pub fn build_engine<const D: usize>(input: EngineInput<'_, D>) -> Result<Engine<
     let scale = 1.0 / body.total_rest_measure();
     let params = newton_params(&file.scene.solver, scale);
     let n = body.n_vertices();
-    let solver = NewtonSolver::new(n, list.terms, &fixed, params).map_err(setup_err)?;
+    // rest positions for the `geometric` ordering (2D: z = 0)
+    let at: Vec<[f64; 3]> = body
+        .rest
+        .iter()
+        .map(|p| std::array::from_fn(|k| p.get(k).copied().unwrap_or(0.0)))
+        .collect();
+    let solver = DofMap::from_fixed_vertices(n, D, &fixed)
+        .and_then(|dofs| NewtonSolver::with_geometry(list.terms, dofs, params, &at))
+        .map_err(setup_err)?;
     let interp_steps = file
         .scene
         .effects

@@ -49,7 +49,7 @@ fn clear_simd(pool: bool) {
 /// (docs/benchmarks/ordering.md, "Tree-level parallel factorisation").
 pub const SPLIT_MIN_FLOPS: f64 = 5e7;
 
-use super::ordering::{FillOrdering, permutation};
+use super::ordering::{Coordinates, FillOrdering, permutation};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 use split::SplitFactor;
@@ -98,6 +98,9 @@ pub struct CholeskyFactor {
     params: CholeskyParams,
     /// The concrete ordering of the current analysis.
     ordering: FillOrdering,
+    /// Positions of the unknowns for [`FillOrdering::Geometric`] (kept for
+    /// reanalyses).
+    coords: Option<Coordinates>,
     factored: bool,
     symbolic_analyses: usize,
     numeric_factorizations: usize,
@@ -135,11 +138,15 @@ fn split_for(
 /// Symbolic analysis of the upper-triangular `pattern` with the ordering of
 /// `params`; the factor values and all scratch are allocated here, once per
 /// pattern, sized for the thread policy.
-fn analysis(pattern: &Pattern, params: CholeskyParams) -> Result<Analysis, FemError> {
+fn analysis(
+    pattern: &Pattern,
+    params: CholeskyParams,
+    coords: Option<&[[f64; 3]]>,
+) -> Result<Analysis, FemError> {
     let n = pattern.n();
     // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
     let a = SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
-    let (perm, ordering_used) = permutation(pattern, params.ordering)?;
+    let (perm, ordering_used) = permutation(pattern, params.ordering, coords)?;
     let inv = perm.as_ref().map(|p| {
         let mut inv = vec![0usize; n];
         for (new, &old) in p.iter().enumerate() {
@@ -235,6 +242,17 @@ impl CholeskyFactor {
 
     /// Symbolic analysis with the ordering and thread policy of `params`.
     pub fn analyze_with(pattern: &Pattern, params: CholeskyParams) -> Result<Self, FemError> {
+        Self::analyze_at(pattern, params, None)
+    }
+
+    /// [`CholeskyFactor::analyze_with`] with the position of every unknown
+    /// (`coords.len() == pattern.n()`), which [`FillOrdering::Geometric`]
+    /// needs (and [`FillOrdering::Auto`] may use).
+    pub fn analyze_at(
+        pattern: &Pattern,
+        params: CholeskyParams,
+        coords: Option<Coordinates>,
+    ) -> Result<Self, FemError> {
         let Analysis {
             symbolic,
             l_values,
@@ -242,7 +260,7 @@ impl CholeskyFactor {
             threads,
             split,
             ordering,
-        } = analysis(pattern, params)?;
+        } = analysis(pattern, params, coords.as_deref())?;
         Ok(CholeskyFactor {
             symbolic,
             analysed: structure(pattern),
@@ -253,6 +271,7 @@ impl CholeskyFactor {
             split,
             params,
             ordering,
+            coords,
             factored: false,
             symbolic_analyses: 1,
             numeric_factorizations: 0,
@@ -276,7 +295,7 @@ impl CholeskyFactor {
             threads,
             split,
             ordering,
-        } = analysis(pattern, self.params)?;
+        } = analysis(pattern, self.params, self.coords.as_deref())?;
         self.ordering = ordering;
         self.split = split;
         self.symbolic = symbolic;
@@ -564,6 +583,7 @@ mod tests {
     #[test]
     fn every_ordering_and_policy_solves_the_same_system() {
         let p = crate::linear::ordering::tests::grid(9, 7, 2);
+        let coords: Coordinates = crate::linear::ordering::tests::grid_coords(9, 7, 2).into();
         let v = dominant(&p);
         let xs: Vec<f64> = (0..p.n()).map(|i| (0.7 * i as f64).sin()).collect();
         let mut b = vec![0.0; p.n()];
@@ -571,7 +591,7 @@ mod tests {
         for ordering in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
             for threads in ThreadPolicy::ALL {
                 let params = CholeskyParams { ordering, threads };
-                let mut f = CholeskyFactor::analyze_with(&p, params).unwrap();
+                let mut f = CholeskyFactor::analyze_at(&p, params, Some(coords.clone())).unwrap();
                 assert_eq!(f.params(), params);
                 for _ in 0..3 {
                     f.factorize(&p, &v).unwrap();

@@ -33,6 +33,7 @@ use crate::pattern::Pattern;
 use adaptive::{Adaptive, factorize_shifted};
 pub use auto::{AutoLimits, SystemSize};
 use cholesky::{CholeskyFactor, CholeskyParams};
+use ordering::Coordinates;
 use pcg::{Pcg, PcgInfo};
 pub use precond::Preconditioner;
 pub use reuse::FactorReuse;
@@ -147,12 +148,30 @@ impl LinearSystem {
         dim: usize,
         cholesky: CholeskyParams,
     ) -> Result<Self, FemError> {
+        Self::with_geometry(pattern, choice, limits, dim, cholesky, None)
+    }
+
+    /// [`LinearSystem::with_cholesky_params`] with the position of every
+    /// unknown, for the `geometric` ordering ([`CholeskyFactor::analyze_at`]).
+    pub fn with_geometry(
+        pattern: &Pattern,
+        choice: LinearSolver,
+        limits: AutoLimits,
+        dim: usize,
+        cholesky: CholeskyParams,
+        coords: Option<Coordinates>,
+    ) -> Result<Self, FemError> {
         if choice != LinearSolver::Pcg && !cholesky.ordering.is_available() {
             // an error here, not `Auto` quietly falling back to PCG below
             return Err(FemError::Symbolic(format!(
                 "the `{}` ordering needs ecc-fem built with the `metis` feature",
                 cholesky.ordering.name()
             )));
+        }
+        let positioned = coords.as_ref().is_some_and(|c| c.len() == pattern.n());
+        if choice != LinearSolver::Pcg && cholesky.ordering.needs_positions() && !positioned {
+            // an error here, not `Auto` quietly falling back to PCG below
+            return Err(ordering::missing_positions());
         }
         let pcg = || {
             Backend::Pcg(Box::new(Pcg::with_preconditioner(
@@ -164,11 +183,11 @@ impl LinearSystem {
         let (backend, analysis) = match choice {
             LinearSolver::Pcg => (pcg(), None),
             LinearSolver::Cholesky => {
-                let f = CholeskyFactor::analyze_with(pattern, cholesky)?;
+                let f = CholeskyFactor::analyze_at(pattern, cholesky, coords)?;
                 let a = (f.factor_bytes(), f.factor_flops());
                 (Backend::Cholesky(Box::new(f)), Some(a))
             }
-            LinearSolver::Auto => match CholeskyFactor::analyze_with(pattern, cholesky) {
+            LinearSolver::Auto => match CholeskyFactor::analyze_at(pattern, cholesky, coords) {
                 Ok(f) => {
                     let a = (f.factor_bytes(), f.factor_flops());
                     let size = SystemSize {
@@ -449,6 +468,40 @@ mod tests {
             v[p.slot(e[0], e[1]).unwrap()] -= 1.0;
         }
         (p, v)
+    }
+
+    /// `geometric` without a position per unknown is an error for every
+    /// solver that may factorise (never `Auto` quietly switching to PCG);
+    /// with them, the factor uses it.
+    #[test]
+    fn geometric_needs_positions_and_uses_them() {
+        let p = ordering::tests::grid(6, 5, 2);
+        let params = CholeskyParams {
+            ordering: ordering::FillOrdering::Geometric,
+            ..Default::default()
+        };
+        let limits = AutoLimits::default();
+        for choice in [LinearSolver::Cholesky, LinearSolver::Auto] {
+            let Err(e) = LinearSystem::with_cholesky_params(&p, choice, limits, 2, params) else {
+                panic!("{choice:?} without positions");
+            };
+            assert!(format!("{e}").contains("vertex positions"), "{e}");
+        }
+        assert!(
+            LinearSystem::with_cholesky_params(&p, LinearSolver::Pcg, limits, 2, params).is_ok()
+        );
+        let coords: Coordinates = ordering::tests::grid_coords(6, 5, 2).into();
+        let s = LinearSystem::with_geometry(
+            &p,
+            LinearSolver::Cholesky,
+            limits,
+            2,
+            params,
+            Some(coords),
+        )
+        .unwrap();
+        let used = s.cholesky().unwrap().params().ordering;
+        assert_eq!(used, ordering::FillOrdering::Geometric);
     }
 
     #[test]

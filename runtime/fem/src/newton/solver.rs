@@ -11,6 +11,7 @@ use super::record::{IterationRecord, NewtonResult, NewtonStatus};
 use crate::assembly::{Assembler, NonFiniteStencil};
 use crate::dofs::DofMap;
 use crate::error::FemError;
+use crate::linear::ordering::Coordinates;
 use crate::linear::{LinearSolver, LinearSystem};
 use crate::pattern::Pattern;
 use crate::term::Term;
@@ -54,6 +55,8 @@ pub struct NewtonSolver<const D: usize> {
     /// Trial positions x + αd.
     pub(super) xt: Vec<[f64; D]>,
     pub(super) partials: Vec<f64>,
+    /// Position of every unknown, for the `geometric` ordering.
+    coords: Option<Coordinates>,
 }
 
 impl<const D: usize> NewtonSolver<D> {
@@ -74,15 +77,51 @@ impl<const D: usize> NewtonSolver<D> {
         dofs: DofMap,
         params: NewtonParams,
     ) -> Result<Self, FemError> {
+        Self::build(terms, dofs, params, None)
+    }
+
+    /// [`NewtonSolver::with_dofs`] knowing where the vertices are
+    /// (`positions[v]`, e.g. the rest shape; 2D positions with z = 0), so
+    /// the Cholesky factor can use the `geometric` ordering
+    /// ([`crate::linear::ordering::FillOrdering::Geometric`]) when asked
+    /// for. Errors when `positions` is not one per vertex.
+    pub fn with_geometry(
+        terms: Vec<Box<dyn Term<D>>>,
+        dofs: DofMap,
+        params: NewtonParams,
+        positions: &[[f64; 3]],
+    ) -> Result<Self, FemError> {
+        if positions.len() != dofs.n_vertices() {
+            return Err(FemError::LengthMismatch {
+                what: "vertex positions for the ordering",
+                expected: dofs.n_vertices(),
+                got: positions.len(),
+            });
+        }
+        Self::build(terms, dofs, params, Some(positions))
+    }
+
+    fn build(
+        terms: Vec<Box<dyn Term<D>>>,
+        dofs: DofMap,
+        params: NewtonParams,
+        positions: Option<&[[f64; 3]]>,
+    ) -> Result<Self, FemError> {
         let nv = dofs.n_vertices();
         let assembler = Assembler::new(&terms, dofs)?;
         let pattern = assembler.pattern();
-        let linear = LinearSystem::with_cholesky_params(
+        // unknowns in the assembler's (renumbered) order
+        let coords: Option<Coordinates> = positions.map(|p| {
+            let dofs = assembler.dofs();
+            (0..dofs.n_unknowns()).map(|u| p[dofs.dof(u) / D]).collect()
+        });
+        let linear = LinearSystem::with_geometry(
             pattern,
             params.linear_solver,
             params.auto_limits,
             D,
             params.cholesky,
+            coords.clone(),
         )?;
         let n = pattern.n();
         let nnz = pattern.nnz();
@@ -99,6 +138,7 @@ impl<const D: usize> NewtonSolver<D> {
             xt: vec![[0.0; D]; nv],
             partials: Vec::new(),
             assembler,
+            coords,
         })
     }
 
@@ -107,8 +147,14 @@ impl<const D: usize> NewtonSolver<D> {
         self.params.linear_solver = choice;
         let limits = self.params.auto_limits;
         let pattern = self.assembler.pattern();
-        let new =
-            LinearSystem::with_cholesky_params(pattern, choice, limits, D, self.params.cholesky)?;
+        let new = LinearSystem::with_geometry(
+            pattern,
+            choice,
+            limits,
+            D,
+            self.params.cholesky,
+            self.coords.clone(),
+        )?;
         let old = std::mem::replace(&mut self.linear, new);
         self.earlier.0 += old.symbolic_analyses();
         self.earlier.1 += old.cholesky().map_or(0, |c| c.numeric_factorizations());

@@ -7,11 +7,8 @@
 //!   triplet sort.
 //! * **Symmetric weights** (uniform, cotangent): sparse Cholesky (faer,
 //!   supernodal) under a **geometric nested dissection** ordering
-//!   ([`nested_dissection`]): the interior vertices are split at the median
-//!   of the longest axis of their bounding box, the vertices of the second
-//!   half adjacent to the first form the separator, numbered last, and both
-//!   halves are dissected recursively (George 1973; for a planar mesh the
-//!   separators have O(√n) vertices, giving O(n log n) fill and O(n^{3/2})
+//!   ([`crate::dissection`], shared with the Newton solver's `geometric`
+//!   ordering; for a planar mesh O(n log n) fill and O(n^{3/2})
 //!   flops). A system that is not positive definite (cotangent weights with
 //!   obtuse angles) falls back to LU.
 //! * **Mean-value weights** (not symmetric): sparse LU (faer).
@@ -35,10 +32,8 @@ use faer::sparse::{SparseColMat, SymbolicSparseColMat};
 use faer::{Conj, Mat, Par, Side};
 
 use super::weights::Contribution;
+use crate::dissection::Graph;
 use crate::error::TutteError;
-
-/// Vertices per leaf of the dissection (ordered as they come).
-const LEAF: usize = 64;
 
 /// The interior matrix (compressed columns, sorted rows, no duplicates) and
 /// the right-hand sides, one row per interior unknown.
@@ -126,58 +121,14 @@ fn compress(start: &[usize], entries: &mut [(usize, f64)]) -> (Vec<usize>, Vec<u
     (col_ptr, row_idx, values)
 }
 
-/// Geometric nested dissection of the graph of `a` (symmetric pattern) with
-/// vertex coordinates `pos`: `perm[new] = old` (see the module docs).
+/// [`crate::dissection::nested_dissection`] of the graph of `a` (symmetric
+/// pattern, compressed columns) with vertex coordinates `pos`.
 pub(super) fn nested_dissection(a: &SparseColMat<usize, f64>, pos: &[[f64; 3]]) -> Vec<usize> {
-    let n = pos.len();
-    let mut verts: Vec<usize> = (0..n).collect();
-    let mut side = vec![0u8; n];
-    let mut perm = Vec::with_capacity(n);
-    dissect(a, pos, &mut verts, &mut side, &mut perm);
-    perm
-}
-
-/// Order `verts`: first half, rest of the second half, separator.
-fn dissect(
-    a: &SparseColMat<usize, f64>,
-    pos: &[[f64; 3]],
-    verts: &mut [usize],
-    side: &mut [u8],
-    perm: &mut Vec<usize>,
-) {
-    if verts.len() <= LEAF {
-        perm.extend_from_slice(verts);
-        return;
-    }
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for &v in verts.iter() {
-        for k in 0..3 {
-            lo[k] = lo[k].min(pos[v][k]);
-            hi[k] = hi[k].max(pos[v][k]);
-        }
-    }
-    let axis = (0..3)
-        .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
-        .unwrap_or(0);
-    let mid = verts.len() / 2;
-    verts.select_nth_unstable_by(mid, |&x, &y| pos[x][axis].total_cmp(&pos[y][axis]));
-    let (first, second) = verts.split_at_mut(mid);
-    first.iter().for_each(|&v| side[v] = 1);
-    // second half: interior vertices to the front, the separator to the back
-    let mut k = 0;
-    for i in 0..second.len() {
-        let v = second[i];
-        let touches = a.symbolic().row_idx_of_col(v).any(|u| side[u] == 1);
-        if !touches {
-            second.swap(i, k);
-            k += 1;
-        }
-    }
-    first.iter().for_each(|&v| side[v] = 0);
-    let (rest, separator) = second.split_at_mut(k);
-    dissect(a, pos, first, side, perm);
-    dissect(a, pos, rest, side, perm);
-    perm.extend_from_slice(separator);
+    let graph = Graph {
+        ptr: a.symbolic().col_ptr(),
+        idx: a.symbolic().row_idx(),
+    };
+    crate::dissection::nested_dissection(graph, pos)
 }
 
 /// Solve the symmetric system in place by Cholesky under the dissection
