@@ -100,8 +100,9 @@ fn dissect(graph: Graph<'_>, pos: &[[f64; 3]], marks: &Marks, verts: &mut [usize
 
 /// Partition `verts` at the median of the longest axis of their bounding
 /// box; returns the size of the lower half. Vertices on the median's
-/// coordinate all go to one side when that keeps both sides non-empty (a
-/// grid row is not cut in two: its separator stays one grid line).
+/// coordinate all go to one side when that leaves each side at least a
+/// quarter (a grid row is not cut in two: its separator stays one grid
+/// line).
 fn split_at_median(pos: &[[f64; 3]], verts: &mut [usize]) -> usize {
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for &v in verts.iter() {
@@ -121,15 +122,17 @@ fn split_at_median(pos: &[[f64; 3]], verts: &mut [usize]) -> usize {
     let (a, b) = verts.split_at_mut(mid);
     let below = partition(a, |v| key(v) < m);
     let at = partition(b, |v| key(v) == m);
-    // the tie block is verts[below..mid + at]: cut at its nearer end
+    // the tie block is verts[below..mid + at]: cut at its nearer end if
+    // both sides keep a quarter (parts shrink geometrically: the recursion
+    // stays O(log n) deep whatever the positions), else inside it
     let (start, end) = (below, mid + at);
-    if start > 0 && (mid - start <= end - mid || end == verts.len()) {
-        start
-    } else if end < verts.len() {
-        end
+    let balanced = |cut: usize| 4 * cut.min(verts.len() - cut) >= verts.len();
+    let nearer = if mid - start <= end - mid {
+        [start, end]
     } else {
-        mid
-    }
+        [end, start]
+    };
+    nearer.into_iter().find(|&c| balanced(c)).unwrap_or(mid)
 }
 
 /// Move the entries of `v` satisfying `first` to the front; returns how many.
@@ -241,6 +244,29 @@ mod tests {
         assert!(n * n >= 2 * PARALLEL_MIN);
         assert_eq!(one, run(2));
         let mut sorted = one.clone();
+        sorted.sort_unstable();
+        assert!(sorted.iter().enumerate().all(|(i, &v)| i == v));
+    }
+
+    /// Positions with huge tie blocks (all but a few vertices on one point)
+    /// still give a permutation, with balanced cuts.
+    #[test]
+    fn degenerate_positions_still_dissect() {
+        let n = 120;
+        let (ptr, idx, mut pos) = grid(n);
+        for (v, p) in pos.iter_mut().enumerate() {
+            if v % 97 != 0 {
+                *p = [0.0; 3];
+            }
+        }
+        let perm = nested_dissection(
+            Graph {
+                ptr: &ptr,
+                idx: &idx,
+            },
+            &pos,
+        );
+        let mut sorted = perm.clone();
         sorted.sort_unstable();
         assert!(sorted.iter().enumerate().all(|(i, &v)| i == v));
     }
