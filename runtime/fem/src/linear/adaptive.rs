@@ -144,7 +144,7 @@ impl Adaptive {
 
     /// Prepare this step for `values` already shifted by `shift` (of
     /// `mean_diag`): an attempt leaves them as they are, otherwise factorise
-    /// ([`factorize_shifted`]). Returns (shift, factorisations).
+    /// (`factorize_shifted`). Returns (shift, factorisations).
     pub fn prepare(
         &mut self,
         pattern: &Pattern,

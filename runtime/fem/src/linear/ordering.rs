@@ -2,7 +2,7 @@
 //!
 //! The Newton matrix of a mesh problem has d×d blocks: the unknowns of one
 //! vertex share their sparsity structure (same neighbours, fully coupled to
-//! each other). [`Supervariables`] detects such groups (consecutive unknowns
+//! each other). `Supervariables` detects such groups (consecutive unknowns
 //! whose closed neighbourhoods are equal), so the orderings work on the
 //! vertex graph (d² times fewer edges) and expand each vertex back to its
 //! unknowns, keeping the unknowns of a vertex adjacent in the factor (one
@@ -11,7 +11,8 @@
 //! * [`FillOrdering::Amd`]: faer's approximate minimum degree on the full
 //!   unknown graph.
 //! * [`FillOrdering::BlockAmd`]: the same AMD on the vertex graph, expanded
-//!   (the default, see [`FillOrdering::default`]).
+//!   (what [`FillOrdering::Auto`], the default, picks below
+//!   [`METIS_MIN_UNKNOWNS`] and in 3D).
 //! * [`FillOrdering::Metis`]: METIS nested dissection (`METIS_NodeND`) on the
 //!   vertex graph, vertex weights = unknowns per vertex; needs the `metis`
 //!   cargo feature (METIS is compiled from source by cargo, a C compiler is
@@ -34,8 +35,8 @@ use crate::pattern::Pattern;
 
 /// Which fill-reducing ordering the symbolic analysis uses.
 ///
-/// The names (`"amd"`, `"block-amd"`, `"metis"`, `"geometric"`, `"auto"`) are stable: scene keys and
-/// the benchmark report select orderings by them.
+/// The names (`"amd"`, `"block-amd"`, `"metis"`, `"geometric"`, `"auto"`)
+/// are stable: scene keys and the benchmark report select orderings by them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FillOrdering {
