@@ -247,7 +247,7 @@ impl CholeskyFactor {
 
     /// [`CholeskyFactor::analyze_with`] with the position of every unknown
     /// (`coords.len() == pattern.n()`), which [`FillOrdering::Geometric`]
-    /// needs (and [`FillOrdering::Auto`] may use).
+    /// needs (the other orderings ignore it).
     pub fn analyze_at(
         pattern: &Pattern,
         params: CholeskyParams,
