@@ -98,6 +98,16 @@ fn dissect(graph: Graph<'_>, pos: &[[f64; 3]], marks: &Marks, verts: &mut [usize
     }
 }
 
+/// The inverse of the permutation `perm` (`inv[perm[new]] = new`), as faer's
+/// `PermRef` wants it beside `perm`.
+pub fn inverse_permutation(perm: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0usize; perm.len()];
+    for (new, &old) in perm.iter().enumerate() {
+        inv[old] = new;
+    }
+    inv
+}
+
 /// Partition `verts` at the median of the longest axis of their bounding
 /// box; returns the size of the lower half. Vertices on the median's
 /// coordinate all go to one side when that leaves each side at least a
@@ -135,7 +145,8 @@ fn split_at_median(pos: &[[f64; 3]], verts: &mut [usize]) -> usize {
     nearer.into_iter().find(|&c| balanced(c)).unwrap_or(mid)
 }
 
-/// Move the entries of `v` satisfying `first` to the front; returns how many.
+/// Move the entries of `v` satisfying `first` to the front (not stable);
+/// returns how many.
 fn partition(v: &mut [usize], first: impl Fn(usize) -> bool) -> usize {
     let mut k = 0;
     for i in 0..v.len() {
@@ -148,7 +159,8 @@ fn partition(v: &mut [usize], first: impl Fn(usize) -> bool) -> usize {
 }
 
 /// Move the vertices of `half` with a neighbour in `other` to the back of
-/// `half` (stable for the rest); returns how many there are.
+/// `half` (the order within either group is not kept); returns how many
+/// there are.
 fn move_touching_last(
     graph: Graph<'_>,
     marks: &Marks,
@@ -196,6 +208,20 @@ mod tests {
         (ptr, idx, pos)
     }
 
+    /// Whether `perm` holds each of 0..n exactly once.
+    fn is_permutation(perm: &[usize], n: usize) -> bool {
+        let mut sorted = perm.to_vec();
+        sorted.sort_unstable();
+        sorted.len() == n && sorted.iter().enumerate().all(|(i, &v)| i == v)
+    }
+
+    #[test]
+    fn inverse_permutation_inverts() {
+        let perm = [2, 0, 3, 1];
+        let inv = inverse_permutation(&perm);
+        assert!((0..4).all(|i| perm[inv[i]] == i && inv[perm[i]] == i));
+    }
+
     #[test]
     fn the_top_separator_of_a_grid_is_one_grid_line() {
         let n = 41;
@@ -207,9 +233,7 @@ mod tests {
             },
             &pos,
         );
-        let mut seen = vec![false; n * n];
-        perm.iter().for_each(|&v| seen[v] = true);
-        assert!(seen.iter().all(|&s| s) && perm.len() == n * n);
+        assert!(is_permutation(&perm, n * n));
         let top: Vec<(usize, usize)> = perm[perm.len() - n..]
             .iter()
             .map(|&v| (v % n, v / n))
@@ -243,9 +267,7 @@ mod tests {
         let one = run(1);
         assert!(n * n >= 2 * PARALLEL_MIN);
         assert_eq!(one, run(2));
-        let mut sorted = one.clone();
-        sorted.sort_unstable();
-        assert!(sorted.iter().enumerate().all(|(i, &v)| i == v));
+        assert!(is_permutation(&one, n * n));
     }
 
     /// Positions with huge tie blocks (all but a few vertices on one point)
@@ -266,8 +288,6 @@ mod tests {
             },
             &pos,
         );
-        let mut sorted = perm.clone();
-        sorted.sort_unstable();
-        assert!(sorted.iter().enumerate().all(|(i, &v)| i == v));
+        assert!(is_permutation(&perm, n * n));
     }
 }

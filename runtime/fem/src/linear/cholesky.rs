@@ -147,13 +147,9 @@ fn analysis(
     // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
     let a = SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
     let (perm, ordering_used) = permutation(pattern, params.ordering, coords)?;
-    let inv = perm.as_ref().map(|p| {
-        let mut inv = vec![0usize; n];
-        for (new, &old) in p.iter().enumerate() {
-            inv[old] = new;
-        }
-        inv
-    });
+    let inv = perm
+        .as_deref()
+        .map(ecc_mesh::dissection::inverse_permutation);
     let ordering = match (&perm, &inv) {
         (Some(p), Some(i)) => SymmetricOrdering::Custom(PermRef::new_checked(p, i, n)),
         _ => SymmetricOrdering::Amd,

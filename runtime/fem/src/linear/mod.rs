@@ -161,17 +161,10 @@ impl LinearSystem {
         cholesky: CholeskyParams,
         coords: Option<Coordinates>,
     ) -> Result<Self, FemError> {
-        if choice != LinearSolver::Pcg && !cholesky.ordering.is_available() {
+        if choice != LinearSolver::Pcg {
             // an error here, not `Auto` quietly falling back to PCG below
-            return Err(FemError::Symbolic(format!(
-                "the `{}` ordering needs ecc-fem built with the `metis` feature",
-                cholesky.ordering.name()
-            )));
-        }
-        let positioned = coords.as_ref().is_some_and(|c| c.len() == pattern.n());
-        if choice != LinearSolver::Pcg && cholesky.ordering.needs_positions() && !positioned {
-            // an error here, not `Auto` quietly falling back to PCG below
-            return Err(ordering::missing_positions());
+            let positioned = coords.as_ref().is_some_and(|c| c.len() == pattern.n());
+            cholesky.ordering.check_usable(positioned)?;
         }
         let pcg = || {
             Backend::Pcg(Box::new(Pcg::with_preconditioner(

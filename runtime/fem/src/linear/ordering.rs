@@ -113,6 +113,18 @@ impl FillOrdering {
         self == FillOrdering::Geometric
     }
 
+    /// An error when this ordering cannot be computed here: not compiled
+    /// in, or it needs a position per unknown and `positioned` is false.
+    pub(crate) fn check_usable(self, positioned: bool) -> Result<(), FemError> {
+        if !self.is_available() {
+            Err(missing_feature(self))
+        } else if self.needs_positions() && !positioned {
+            Err(missing_positions())
+        } else {
+            Ok(())
+        }
+    }
+
     /// What [`FillOrdering::Auto`] uses for `n` unknowns in `groups`
     /// vertex groups (supervariables): METIS when it is compiled in, the
     /// system is 2D (fewer than 2.5 unknowns per group) and
@@ -307,10 +319,18 @@ pub(crate) fn permutation(
 }
 
 /// The error of [`FillOrdering::Geometric`] without a position per unknown.
-pub(crate) fn missing_positions() -> FemError {
+fn missing_positions() -> FemError {
     FemError::Symbolic(
         "the `geometric` ordering needs the vertex positions (NewtonSolver::with_geometry)".into(),
     )
+}
+
+/// The error of an ordering this build does not have.
+fn missing_feature(ordering: FillOrdering) -> FemError {
+    FemError::Symbolic(format!(
+        "the `{}` ordering needs ecc-fem built with the `metis` feature",
+        ordering.name()
+    ))
 }
 
 /// Geometric nested dissection of the group graph, each group at the
@@ -339,9 +359,7 @@ fn metis_permutation(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
 
 #[cfg(not(feature = "metis"))]
 fn metis_permutation(_: &Supervariables) -> Result<Vec<usize>, FemError> {
-    Err(FemError::Symbolic(
-        "the `metis` ordering needs ecc-fem built with the `metis` feature".into(),
-    ))
+    Err(missing_feature(FillOrdering::Metis))
 }
 
 #[cfg(feature = "metis")]
@@ -536,8 +554,7 @@ pub(crate) mod tests {
         let coords = grid_coords(nx, ny, 2);
         let fill = |o: FillOrdering| {
             let perm = permutation(&p, o, Some(&coords)).unwrap().0.unwrap();
-            let mut inv = vec![0; perm.len()];
-            perm.iter().enumerate().for_each(|(i, &q)| inv[q] = i);
+            let inv = ecc_mesh::dissection::inverse_permutation(&perm);
             let a =
                 SymbolicSparseColMatRef::new_checked(p.n(), p.n(), p.col_ptr(), None, p.row_idx());
             let ord =

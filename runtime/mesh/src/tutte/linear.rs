@@ -136,10 +136,7 @@ pub(super) fn nested_dissection(a: &SparseColMat<usize, f64>, pos: &[[f64; 3]]) 
 pub(super) fn solve_cholesky(sys: &mut System, pos: &[[f64; 3]]) -> Result<bool, TutteError> {
     let m = sys.a.nrows();
     let perm = nested_dissection(&sys.a, pos);
-    let mut inv = vec![0usize; m];
-    for (new, &old) in perm.iter().enumerate() {
-        inv[old] = new;
-    }
+    let inv = crate::dissection::inverse_permutation(&perm);
     let ordering = SymmetricOrdering::Custom(PermRef::new_checked(&perm, &inv, m));
     let symbolic = factorize_symbolic_cholesky(
         sys.a.symbolic(),
@@ -233,11 +230,7 @@ mod tests {
                 .unwrap()
                 .len_val()
         };
-        let inv = {
-            let mut inv = vec![0; perm.len()];
-            perm.iter().enumerate().for_each(|(i, &p)| inv[p] = i);
-            inv
-        };
+        let inv = crate::dissection::inverse_permutation(&perm);
         let nd = sym(SymmetricOrdering::Custom(PermRef::new_checked(
             &perm,
             &inv,
