@@ -58,8 +58,8 @@ pub const THRESHOLDS: [f64; 4] = [1e-2, 1e-4, 1e-6, 1e-8];
 pub enum SolveMethod {
     /// The library's defaults (what `ecc sim` and `ecc_fem::param` run):
     /// `Projection::default()`, `LinearSolver::Auto`, the split thread
-    /// policy, and on parameterisations the trust-region Newton policy of
-    /// `ParamOptions::default()`.
+    /// policy, and on parameterisations the trust-region Newton policy and
+    /// the line-search extrapolation of `ParamOptions::default()`.
     Defaults,
     /// [`SolveMethod::Defaults`] in a one-thread rayon pool (symbolic
     /// analysis included), for the 1-vs-2-threads comparison.
@@ -434,6 +434,7 @@ fn param_run(
     variant.apply(&mut p);
     if method.is_defaults() {
         p.filter_policy = defaults.newton.filter_policy;
+        p.extrapolate = defaults.newton.extrapolate;
     }
     let solver = NewtonSolver::new(mesh.positions.len(), vec![term], &[], p).map_err(err)?;
     let mut uv = tutte_embedding(mesh, TutteWeights::Uniform).map_err(err)?;

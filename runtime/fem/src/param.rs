@@ -55,7 +55,9 @@ pub struct ParamOptions {
     /// [`FilterPolicy::TrustRegionNewton`] (the configured filter while the
     /// quadratic model is not trusted, the raw Hessian once it is; fewer
     /// iterations on every measured parameterisation,
-    /// `docs/benchmarks/projection.md`).
+    /// `docs/benchmarks/projection.md`) and `extrapolate` on (the same or
+    /// fewer iterations on every measured parameterisation, same
+    /// document, "Line-search extrapolation").
     pub newton: NewtonParams,
     /// How the element Hessians are projected (see [`Projection`]).
     pub projection: Projection,
@@ -69,6 +71,7 @@ impl Default for ParamOptions {
             tutte: TutteWeights::Uniform,
             newton: NewtonParams {
                 filter_policy: FilterPolicy::TrustRegionNewton,
+                extrapolate: true,
                 ..NewtonParams::default()
             },
             projection: Projection::default(),

@@ -50,14 +50,16 @@ use crate::terms::{
 pub const DEFAULT_MAX_ITERS: usize = 500;
 
 /// Newton parameters of a parameterisation (`[effects.parameterize]`):
-/// [`newton_params`] with the filter policy defaulting to the library's
-/// parameterisation default, `ParamOptions::default()`'s
-/// ([`FilterPolicy::TrustRegionNewton`]: fewer iterations on every measured
-/// parameterisation, docs/benchmarks/projection.md).
+/// [`newton_params`] with the filter policy and the line-search
+/// extrapolation defaulting to the library's parameterisation defaults,
+/// `ParamOptions::default()`'s ([`FilterPolicy::TrustRegionNewton`] and
+/// `extrapolate = true`: fewer iterations on the measured
+/// parameterisations, docs/benchmarks/projection.md).
 pub fn param_newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
-    let library = ParamOptions::default().newton.filter_policy;
+    let library = ParamOptions::default().newton;
     NewtonParams {
-        filter_policy: filter_policy(s, library),
+        filter_policy: filter_policy(s, library.filter_policy),
+        extrapolate: s.extrapolate.unwrap_or(library.extrapolate),
         ..newton_params(s, scale)
     }
 }
@@ -96,6 +98,7 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
         } else {
             ecc_fem::linear::FactorReuse::OFF
         },
+        extrapolate: s.extrapolate.unwrap_or(false),
         energy_scale: scale,
         cholesky: ecc_fem::linear::cholesky::CholeskyParams {
             ordering: s.ordering.unwrap_or_default(),

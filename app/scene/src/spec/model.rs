@@ -429,6 +429,13 @@ pub struct SolverSpec {
     /// not on 2D parameterisations).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factor_reuse: Option<bool>,
+    /// After a full Newton step with no inversion-free bound, try once the
+    /// longer step that minimises the parabola through E(0), ∇Eᵀd and E(1)
+    /// (`ecc_fem::NewtonParams::extrapolate`). Default: true for
+    /// `[effects.parameterize]`, false otherwise (docs/benchmarks/projection.md:
+    /// fewer iterations on the parameterisations, more on the 3D hand).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extrapolate: Option<bool>,
     /// `auto` (default: `element` for triangles, `f-space` for tets),
     /// `f-space`, `element` or `hybrid`.
     #[serde(default)]

@@ -9,7 +9,7 @@ use std::time::Instant;
 use ecc_runtime::filter::Filter;
 use rayon::prelude::*;
 
-use super::line_search::{Accepted, Armijo, backtrack, initial_step};
+use super::line_search::{Accepted, Armijo, backtrack, extrapolation, initial_step};
 use super::params::{FilterPolicy, NewtonParams};
 use super::record::{IterationRecord, NewtonStatus, TimeSplit};
 use super::solver::NewtonSolver;
@@ -288,7 +288,8 @@ impl<const D: usize> NewtonSolver<D> {
     }
 
     /// Step 4: inversion-free bound α_max and backtracking Armijo search from
-    /// α₀ = min(1, `barrier_safety`·α_max); leaves x + αd in `xt`.
+    /// α₀ = min(1, `barrier_safety`·α_max), then (with `extrapolate`) one
+    /// longer step when the full one passed unbounded; leaves x + αd in `xt`.
     fn line_search(
         &mut self,
         x: &[[f64; D]],
@@ -308,7 +309,7 @@ impl<const D: usize> NewtonSolver<D> {
         let alpha0 = initial_step(alpha_max, s.p.barrier_safety);
         let scale = s.p.energy_scale;
         let (terms, assembler, xt, dx) = (&self.terms, &mut self.assembler, &mut self.xt, &self.dx);
-        let ls = backtrack(energy, slope, alpha0, s.armijo, |alpha| {
+        let mut energy_at = |alpha: f64| {
             xt.par_iter_mut()
                 .zip(x)
                 .zip(dx)
@@ -319,7 +320,24 @@ impl<const D: usize> NewtonSolver<D> {
                     }
                 });
             assembler.energy(terms, xt, scale)
-        });
+        };
+        let mut ls = backtrack(energy, slope, alpha0, s.armijo, &mut energy_at);
+        if let Ok(acc) = &mut ls
+            && s.p.extrapolate
+            && acc.alpha == 1.0
+            && !acc.noise_limited
+            && let Some(alpha) = extrapolation(energy, slope, acc.energy, alpha_max)
+        {
+            let e = energy_at(alpha);
+            acc.evals += 1;
+            if e < acc.energy {
+                (acc.alpha, acc.energy) = (alpha, e);
+            } else {
+                // back to x + d (NaN and +∞ land here too)
+                energy_at(1.0);
+                acc.evals += 1;
+            }
+        }
         let t_line_search = t3.elapsed().as_secs_f64();
         s.times.line_search += t_line_search;
         let acc = ls.map_err(|last_step| NewtonStatus::LineSearchFailed {

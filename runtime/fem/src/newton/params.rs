@@ -98,6 +98,12 @@ pub struct NewtonParams {
     /// at 1 and lets the barrier's +∞ reject steps past α_max (TinyAD's
     /// `line_search`; see `docs/benchmarks/projection.md` for the comparison).
     pub barrier_safety: f64,
+    /// After an accepted full step with no inversion-free bound, try once
+    /// the minimiser α* ∈ [1.1, 2] of the parabola through E(0), ∇Eᵀd and
+    /// E(1), keeping it if it lowers E (`line_search` module docs).
+    /// Default false; the parameterisations turn it on
+    /// (`ParamOptions::default`, docs/benchmarks/projection.md).
+    pub extrapolate: bool,
     /// Relative diagonal shift used when nothing is fixed (null space), see
     /// [`crate::linear`]. Systems with fixed DOFs start unshifted.
     pub null_space_shift: f64,
@@ -130,6 +136,7 @@ impl Default for NewtonParams {
             backtrack: 0.5,
             min_step: 1e-12,
             barrier_safety: 0.9,
+            extrapolate: false,
             null_space_shift: 1e-10,
             shift_attempts: 12,
             pcg_max_iters: 20_000,
