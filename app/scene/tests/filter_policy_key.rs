@@ -2,6 +2,10 @@
 //! (`ecc_fem::FilterPolicy`). Parameterisations default to trust-region
 //! Newton, deformation scenes to the fixed filter; `filter = "adaptive"`
 //! keeps meaning the trust-region policy.
+//!
+//! `[solver] extrapolate`: the line-search extrapolation
+//! (`ecc_fem::NewtonParams::extrapolate`), likewise on by default for
+//! parameterisations and off for deformation scenes; either can be set.
 
 use ecc_fem::{Filter, FilterPolicy};
 use ecc_scene::SceneFile;
@@ -81,4 +85,32 @@ fn the_key_round_trips_and_is_omitted_when_unset() {
     );
     let f = SceneFile::parse(MESH, "scene.toml", ".").unwrap();
     assert!(!toml::to_string(&f.scene).unwrap().contains("filter_policy"));
+}
+
+/// `extrapolate` of (deformation, parameterisation) parameters.
+fn extrapolate(solver: &str) -> (bool, bool) {
+    let f = parse(solver).unwrap();
+    (
+        newton_params(&f.scene.solver, 1.0).extrapolate,
+        param_newton_params(&f.scene.solver, 1.0).extrapolate,
+    )
+}
+
+#[test]
+fn extrapolation_defaults_by_problem_kind_and_both_can_be_set() {
+    assert_eq!(extrapolate(""), (false, true));
+    assert_eq!(extrapolate("extrapolate = true"), (true, true));
+    assert_eq!(extrapolate("extrapolate = false"), (false, false));
+}
+
+#[test]
+fn a_bad_extrapolate_value_is_a_located_error_and_the_key_round_trips() {
+    let err = parse("extrapolate = \"yes\"").unwrap_err();
+    assert!(err.contains("extrapolate"), "{err}");
+    assert!(err.contains("scene.toml:7:"), "{err}");
+    let f = parse("extrapolate = true").unwrap();
+    let back = toml::to_string(&f.scene).unwrap();
+    assert!(back.contains("extrapolate = true"), "{back}");
+    let f = parse("").unwrap();
+    assert!(!toml::to_string(&f.scene).unwrap().contains("extrapolate"));
 }
