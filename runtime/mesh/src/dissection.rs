@@ -208,6 +208,11 @@ mod tests {
         (ptr, idx, pos)
     }
 
+    /// [`nested_dissection`] of the graph `ptr`/`idx` at `pos`.
+    fn dissect(ptr: &[usize], idx: &[usize], pos: &[[f64; 3]]) -> Vec<usize> {
+        nested_dissection(Graph { ptr, idx }, pos)
+    }
+
     /// Whether `perm` holds each of 0..n exactly once.
     fn is_permutation(perm: &[usize], n: usize) -> bool {
         let mut sorted = perm.to_vec();
@@ -226,13 +231,7 @@ mod tests {
     fn the_top_separator_of_a_grid_is_one_grid_line() {
         let n = 41;
         let (ptr, idx, pos) = grid(n);
-        let perm = nested_dissection(
-            Graph {
-                ptr: &ptr,
-                idx: &idx,
-            },
-            &pos,
-        );
+        let perm = dissect(&ptr, &idx, &pos);
         assert!(is_permutation(&perm, n * n));
         let top: Vec<(usize, usize)> = perm[perm.len() - n..]
             .iter()
@@ -254,15 +253,7 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap();
-            pool.install(|| {
-                nested_dissection(
-                    Graph {
-                        ptr: &ptr,
-                        idx: &idx,
-                    },
-                    &pos,
-                )
-            })
+            pool.install(|| dissect(&ptr, &idx, &pos))
         };
         let one = run(1);
         assert!(n * n >= 2 * PARALLEL_MIN);
@@ -281,13 +272,7 @@ mod tests {
                 *p = [0.0; 3];
             }
         }
-        let perm = nested_dissection(
-            Graph {
-                ptr: &ptr,
-                idx: &idx,
-            },
-            &pos,
-        );
+        let perm = dissect(&ptr, &idx, &pos);
         assert!(is_permutation(&perm, n * n));
     }
 }
