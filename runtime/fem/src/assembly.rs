@@ -71,13 +71,7 @@ impl<const D: usize> Assembler<D> {
     /// Validate the terms' stencils and build everything that depends only on
     /// the mesh and the fixed set.
     pub fn new(terms: &[Box<dyn Term<D>>], dofs: DofMap) -> Result<Self, FemError> {
-        if dofs.dim() != D {
-            return Err(FemError::LengthMismatch {
-                what: "DOF map dimension",
-                expected: D,
-                got: dofs.dim(),
-            });
-        }
+        FemError::check_len("DOF map dimension", D, dofs.dim())?;
         let sets: Vec<StencilSet<'_>> = terms
             .iter()
             .map(|t| StencilSet {

@@ -261,13 +261,7 @@ impl HandleDeformation {
 
     /// Overwrite the current positions (e.g. a new start).
     pub fn set_positions(&mut self, x: &[[f64; 3]]) -> Result<(), FemError> {
-        if x.len() != self.x.len() {
-            return Err(FemError::LengthMismatch {
-                what: "positions",
-                expected: self.x.len(),
-                got: x.len(),
-            });
-        }
+        FemError::check_len("positions", self.x.len(), x.len())?;
         self.x.copy_from_slice(x);
         Ok(())
     }
@@ -319,13 +313,7 @@ impl HandleDeformation {
     }
 
     fn check_targets(&self, targets: &[[f64; 3]]) -> Result<(), FemError> {
-        if targets.len() != self.handles.len() {
-            return Err(FemError::LengthMismatch {
-                what: "handle targets",
-                expected: self.handles.len(),
-                got: targets.len(),
-            });
-        }
+        FemError::check_len("handle targets", self.handles.len(), targets.len())?;
         match targets
             .iter()
             .position(|t| t.iter().any(|c| !c.is_finite()))

@@ -52,13 +52,7 @@ impl DofMap {
     /// Per-DOF mask: `fixed[v·D + c]` fixes coordinate `c` of vertex `v`.
     pub fn from_dof_mask(n_vertices: usize, dim: usize, fixed: &[bool]) -> Result<Self, FemError> {
         let n_dofs = n_vertices * dim;
-        if fixed.len() != n_dofs {
-            return Err(FemError::LengthMismatch {
-                what: "fixed-DOF mask",
-                expected: n_dofs,
-                got: fixed.len(),
-            });
-        }
+        FemError::check_len("fixed-DOF mask", n_dofs, fixed.len())?;
         if n_dofs >= FIXED as usize {
             return Err(FemError::TooLarge {
                 what: "DOF",

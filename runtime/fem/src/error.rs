@@ -89,3 +89,18 @@ pub enum FemError {
     #[error("sparse Cholesky symbolic analysis failed: {0}")]
     Symbolic(String),
 }
+
+impl FemError {
+    /// `Ok` when `got == expected`, else [`FemError::LengthMismatch`].
+    pub(crate) fn check_len(what: &'static str, expected: usize, got: usize) -> Result<(), Self> {
+        if got == expected {
+            Ok(())
+        } else {
+            Err(FemError::LengthMismatch {
+                what,
+                expected,
+                got,
+            })
+        }
+    }
+}

@@ -64,13 +64,7 @@ fn unit_dirs<const D: usize>(
     dirs: &[[f64; D]],
     n: usize,
 ) -> Result<Vec<SVector<f64, D>>, FemError> {
-    if dirs.len() != n {
-        return Err(FemError::LengthMismatch {
-            what: "fibre directions",
-            expected: n,
-            got: dirs.len(),
-        });
-    }
+    FemError::check_len("fibre directions", n, dirs.len())?;
     dirs.iter()
         .enumerate()
         .map(|(q, d)| {

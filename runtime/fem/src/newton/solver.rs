@@ -91,13 +91,11 @@ impl<const D: usize> NewtonSolver<D> {
         params: NewtonParams,
         positions: &[[f64; 3]],
     ) -> Result<Self, FemError> {
-        if positions.len() != dofs.n_vertices() {
-            return Err(FemError::LengthMismatch {
-                what: "vertex positions for the ordering",
-                expected: dofs.n_vertices(),
-                got: positions.len(),
-            });
-        }
+        FemError::check_len(
+            "vertex positions for the ordering",
+            dofs.n_vertices(),
+            positions.len(),
+        )?;
         Self::build(terms, dofs, params, Some(positions))
     }
 
@@ -199,13 +197,7 @@ impl<const D: usize> NewtonSolver<D> {
     }
 
     fn check_positions(&self, x: &[[f64; D]]) -> Result<(), FemError> {
-        if x.len() != self.dx.len() {
-            return Err(FemError::LengthMismatch {
-                what: "positions",
-                expected: self.dx.len(),
-                got: x.len(),
-            });
-        }
+        FemError::check_len("positions", self.dx.len(), x.len())?;
         if let Some(v) = x.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
             return Err(FemError::NonFinitePosition {
                 what: "positions",

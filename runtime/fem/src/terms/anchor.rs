@@ -28,20 +28,8 @@ impl<const D: usize> SoftAnchors<D> {
         targets: Vec<[f64; D]>,
         weights: Vec<f64>,
     ) -> Result<Self, FemError> {
-        if targets.len() != vertices.len() {
-            return Err(FemError::LengthMismatch {
-                what: "anchor targets",
-                expected: vertices.len(),
-                got: targets.len(),
-            });
-        }
-        if weights.len() != vertices.len() {
-            return Err(FemError::LengthMismatch {
-                what: "anchor weights",
-                expected: vertices.len(),
-                got: weights.len(),
-            });
-        }
+        FemError::check_len("anchor targets", vertices.len(), targets.len())?;
+        FemError::check_len("anchor weights", vertices.len(), weights.len())?;
         if let Some(i) = targets
             .iter()
             .position(|t| t.iter().any(|c| !c.is_finite()))
