@@ -223,7 +223,8 @@ impl Pcg {
             axpy(&mut self.r, -alpha, &self.q);
             rnorm = dot(&self.r, &self.r, &mut self.partials).sqrt();
             it += 1;
-            if rnorm > rel_tol * bnorm && hopeless(it, rnorm / bnorm) {
+            // converged (no preconditioner solve for a direction never taken) or hopeless
+            if rnorm <= rel_tol * bnorm || hopeless(it, rnorm / bnorm) {
                 break;
             }
             precond(&self.r, &mut self.z);
