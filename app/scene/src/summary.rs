@@ -71,6 +71,12 @@ pub struct LinearWork {
     /// run total only, absent without a Cholesky factor.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub split: Option<bool>,
+    /// The precision of the factor at the end of the run (`[solver]
+    /// precision`): `mixed` for a split factor kept in single precision,
+    /// `double` otherwise (not split, asked so, or fallen back to double);
+    /// run total only, absent without a Cholesky factor.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub precision: Option<ecc_fem::linear::cholesky::FactorPrecision>,
 }
 
 impl LinearWork {
@@ -108,6 +114,11 @@ impl LinearWork {
             self.threads = Some(f.params().threads);
             self.ordering = Some(f.params().ordering);
             self.split = Some(f.split().is_some());
+            self.precision = Some(if f.is_mixed() {
+                ecc_fem::linear::cholesky::FactorPrecision::Mixed
+            } else {
+                ecc_fem::linear::cholesky::FactorPrecision::Double
+            });
         }
         self
     }

@@ -3,7 +3,7 @@
 //! ordering (`ecc_fem::linear::ordering::FillOrdering`), by their stable
 //! names, reported back under `linear` in the summary.
 
-use ecc_fem::linear::cholesky::{CholeskyParams, ThreadPolicy};
+use ecc_fem::linear::cholesky::{CholeskyParams, FactorPrecision, ThreadPolicy};
 use ecc_fem::linear::ordering::FillOrdering;
 use ecc_scene::sim::build::newton_params;
 use ecc_scene::{RunOptions, RuntimeEnergies, SceneFile, Silent, run_scene};
@@ -39,14 +39,30 @@ fn every_policy_and_ordering_is_selected_by_its_name() {
         both,
         CholeskyParams {
             ordering: FillOrdering::Amd,
-            threads: ThreadPolicy::Split
+            threads: ThreadPolicy::Split,
+            ..Default::default()
         }
     );
 }
 
 #[test]
+fn the_precision_is_mixed_unless_asked_double() {
+    assert_eq!(params_of("").unwrap().precision, FactorPrecision::Mixed);
+    for p in [FactorPrecision::Mixed, FactorPrecision::Double] {
+        let name = serde_json::to_value(p).unwrap();
+        let got = params_of(&format!("precision = {name}")).unwrap();
+        assert_eq!(got.precision, p);
+    }
+}
+
+#[test]
 fn a_bad_value_is_a_located_error() {
-    for bad in ["threads = \"2\"", "threads = 2", "ordering = \"nd\""] {
+    for bad in [
+        "threads = \"2\"",
+        "threads = 2",
+        "ordering = \"nd\"",
+        "precision = \"single\"",
+    ] {
         let err = params_of(bad).unwrap_err();
         // the key's line: 5 lines of MESH, then `[solver]`
         assert!(err.contains("scene.toml:7:"), "{bad}: {err}");
@@ -112,4 +128,53 @@ fn the_summary_reports_the_policy_ordering_and_split() {
         w.get("threads").is_none() && w.get("split").is_none(),
         "{w}"
     );
+}
+
+/// `[effects.parameterize]` on a 60-ring disk (≈ 22k triangles, large
+/// enough to split on two threads) with `solver` keys: its summary.
+fn split_disk_json(solver: &str) -> serde_json::Value {
+    let text = format!(
+        "[mesh]\ngenerate = \"disk\"\nrings = 60\n[energy]\nname = \"sd\"\n\
+         [effects.parameterize]\ntutte = \"uniform\"\n[solver]\nlinear = \"cholesky\"\n{solver}\n"
+    );
+    let f = SceneFile::parse(&text, "scene.toml", ".").unwrap();
+    let opts = RunOptions {
+        dry_run: true,
+        ..Default::default()
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
+    let s = pool
+        .install(|| run_scene(&f, &RuntimeEnergies, &opts, &mut Silent))
+        .unwrap()
+        .summary;
+    assert!(s.frames[1].converged, "{solver}");
+    serde_json::to_value(&s).unwrap()
+}
+
+/// A split factor is mixed by default: every Newton step refines its solve
+/// by CG (so `cg_iterations` counts at least one per Newton iteration; this
+/// disk's trust-region steps on raw Hessians also leave the factor mixed);
+/// `precision = "double"` solves directly. Both are reported.
+#[test]
+fn the_summary_reports_the_precision_and_the_refinement() {
+    let run = split_disk_json("");
+    let mixed = &run["linear"];
+    assert_eq!(mixed["split"], true, "{mixed}");
+    assert_eq!(mixed["precision"], "mixed");
+    let (cg, newton) = (&mixed["cg_iterations"], &run["newton_iterations"]);
+    assert!(
+        cg.as_u64() >= newton.as_u64() && newton.as_u64() > Some(0),
+        "{run}"
+    );
+    let double = &split_disk_json("precision = \"double\"")["linear"];
+    assert_eq!(double["split"], true);
+    assert_eq!(double["precision"], "double");
+    assert_eq!(double["cg_iterations"], 0);
+    // a factor that is not split is double whatever was asked
+    let small = linear_json("linear = \"cholesky\"", 2);
+    assert_eq!(small["split"], false);
+    assert_eq!(small["precision"], "double");
 }

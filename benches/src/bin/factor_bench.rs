@@ -131,6 +131,7 @@ fn time_ordering(
             CholeskyParams {
                 ordering,
                 threads: policy,
+                ..Default::default()
             },
         )
         .map_err(|e| e.to_string())?;

@@ -129,6 +129,7 @@ fn split_row(
     let seq_params = CholeskyParams {
         ordering,
         threads: ThreadPolicy::Sequential,
+        ..Default::default()
     };
     let t = Instant::now();
     let mut seq1 = one.install(|| analyze(seq_params));
@@ -138,6 +139,7 @@ fn split_row(
     let split_params = CholeskyParams {
         ordering,
         threads: ThreadPolicy::Split,
+        ..Default::default()
     };
     let mut split = analyze(split_params);
     let t_split = t.elapsed().as_secs_f64();
@@ -242,7 +244,11 @@ fn main() {
     for ordering in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
         let mk = |threads| {
             let t = Instant::now();
-            let params = CholeskyParams { ordering, threads };
+            let params = CholeskyParams {
+                ordering,
+                threads,
+                ..Default::default()
+            };
             let f = CholeskyFactor::analyze_at(&p, params, Some(coords.clone())).unwrap();
             (f, t.elapsed().as_secs_f64())
         };

@@ -103,6 +103,7 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
         cholesky: ecc_fem::linear::cholesky::CholeskyParams {
             ordering: s.ordering.unwrap_or_default(),
             threads: s.threads.unwrap_or_default(),
+            precision: s.precision.unwrap_or_default(),
         },
         ..NewtonParams::default()
     }

@@ -440,12 +440,18 @@ pub struct SolverSpec {
     /// `f-space`, `element` or `hybrid`.
     #[serde(default)]
     pub projection: ProjectionKind,
-    /// Thread policy of the Cholesky factorisation: `sequential` (default),
-    /// `split` (two halves of a separator on two threads when the symbolic
-    /// analysis estimates it pays), `parallel` or `auto`
+    /// Thread policy of the Cholesky factorisation: `split` (default: two
+    /// halves of a separator on two threads when the symbolic analysis
+    /// estimates it pays), `sequential`, `parallel` or `auto`
     /// (`ecc_fem::linear::cholesky::ThreadPolicy`; docs/benchmarks/threads.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<ecc_fem::linear::cholesky::ThreadPolicy>,
+    /// Precision of a split Cholesky factor: `mixed` (default: its halves
+    /// in single precision, solves refined by CG in double) or `double`
+    /// (`ecc_fem::linear::cholesky::FactorPrecision`;
+    /// docs/benchmarks/million.md, "Mixed precision").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub precision: Option<ecc_fem::linear::cholesky::FactorPrecision>,
     /// Fill-reducing ordering of the Cholesky factor: `auto` (default:
     /// `metis` for 2D systems of at least 500k unknowns, `block-amd`
     /// otherwise), `block-amd`, `amd`, `metis` or `geometric` (nested

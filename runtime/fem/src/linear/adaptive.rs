@@ -210,10 +210,18 @@ impl Adaptive {
             info.relative_residual = 0.0;
         }
         self.last = LinearSolver::Cholesky;
-        out.copy_from_slice(rhs);
-        if !self.factor.solve_in_place(out) {
-            out.fill(f64::NAN);
-        }
+        let direct = super::mixed::solve_with_factor(
+            &mut self.factor,
+            &mut self.pcg,
+            pattern,
+            values,
+            rhs,
+            out,
+            rel_tol,
+        );
+        info.iterations += direct.iterations;
+        info.relative_residual = direct.relative_residual;
+        info.factorizations += direct.factorizations;
         info
     }
 }

@@ -27,10 +27,13 @@ use faer::{Conj, MatMut, Par, Side};
 use serde::{Deserialize, Serialize};
 
 mod half;
+mod precision;
+mod real;
 mod split;
 mod threads;
 mod tree;
 
+pub use precision::FactorPrecision;
 pub use threads::{REPROBE_EVERY, ThreadPolicy};
 
 /// [`ecc_util::clear_upper_simd`] on this thread and, when faer's kernels
@@ -52,7 +55,7 @@ pub const SPLIT_MIN_FLOPS: f64 = 5e7;
 use super::ordering::{Coordinates, FillOrdering, permutation};
 use crate::error::FemError;
 use crate::pattern::Pattern;
-use split::SplitFactor;
+use precision::Split;
 use threads::ThreadChooser;
 
 /// How [`CholeskyFactor`] orders and threads its factorisation.
@@ -62,6 +65,10 @@ pub struct CholeskyParams {
     pub ordering: FillOrdering,
     /// Threads of the numeric factorisation and the solves.
     pub threads: ThreadPolicy,
+    /// Scalar of a split factor's halves ([`FactorPrecision`]; factors that
+    /// are not split are always double).
+    #[serde(default)]
+    pub precision: FactorPrecision,
 }
 
 /// The numeric factorisation hit a non-positive pivot (matrix not numerically PD).
@@ -93,7 +100,7 @@ pub struct CholeskyFactor {
     par: Par,
     /// The two-way split factor ([`ThreadPolicy::Split`]); when present,
     /// `l_values` is empty and every factorisation and solve goes through it.
-    split: Option<SplitFactor>,
+    split: Option<Split>,
     /// As asked (the ordering may be `Auto`; reanalyses resolve it again).
     params: CholeskyParams,
     /// The concrete ordering of the current analysis.
@@ -102,6 +109,9 @@ pub struct CholeskyFactor {
     /// reanalyses).
     coords: Option<Coordinates>,
     factored: bool,
+    /// A mixed factor met a matrix indefinite in double too (its later
+    /// single-precision breakdowns are reported without a double retry).
+    indefinite_seen: bool,
     symbolic_analyses: usize,
     numeric_factorizations: usize,
 }
@@ -112,7 +122,7 @@ struct Analysis {
     l_values: Vec<f64>,
     mem: MemBuffer,
     threads: ThreadChooser,
-    split: Option<SplitFactor>,
+    split: Option<Split>,
     /// The concrete ordering used.
     ordering: FillOrdering,
 }
@@ -123,13 +133,13 @@ fn split_for(
     pattern: &Pattern,
     params: CholeskyParams,
     symbolic: &SymbolicCholesky<usize>,
-) -> Result<Option<SplitFactor>, FemError> {
+) -> Result<Option<Split>, FemError> {
     let wanted = params.threads == ThreadPolicy::Split
         && rayon::current_num_threads() >= 2
         && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
         && flops(symbolic) >= SPLIT_MIN_FLOPS;
     if wanted {
-        SplitFactor::analyse(pattern, symbolic, false)
+        Split::analyse(pattern, symbolic, params.precision)
     } else {
         Ok(None)
     }
@@ -269,6 +279,7 @@ impl CholeskyFactor {
             ordering,
             coords,
             factored: false,
+            indefinite_seen: false,
             symbolic_analyses: 1,
             numeric_factorizations: 0,
         })
@@ -313,9 +324,43 @@ impl CholeskyFactor {
         }
     }
 
-    /// Memory taken by the factor values, in bytes.
+    /// Memory taken by the factor values, in bytes (a mixed split factor's
+    /// halves at 4 bytes a value).
     pub fn factor_bytes(&self) -> usize {
-        self.factor_nnz() * std::mem::size_of::<f64>()
+        match &self.split {
+            Some(s) => s.bytes(),
+            None => self.symbolic.len_val() * std::mem::size_of::<f64>(),
+        }
+    }
+
+    /// Whether the factor is a mixed-precision split ([`FactorPrecision`]):
+    /// its solves are then accurate to about κ·2⁻²⁴ only, and
+    /// [`crate::linear::LinearSystem::solve`] refines them by CG.
+    pub fn is_mixed(&self) -> bool {
+        self.split.as_ref().is_some_and(Split::is_mixed)
+    }
+
+    /// Whether a mixed factor has met a matrix indefinite in double too.
+    #[cfg(test)]
+    pub(crate) fn indefinite_seen(&self) -> bool {
+        self.indefinite_seen
+    }
+
+    /// Make a mixed-precision factor double for good (same structure, fresh
+    /// storage, to be factorised again); nothing for any other factor. On an
+    /// allocation failure the factor stays as it was.
+    pub fn to_double(&mut self) -> Result<(), FemError> {
+        if let Some(double) = self
+            .split
+            .as_ref()
+            .map(Split::double)
+            .transpose()?
+            .flatten()
+        {
+            self.split = Some(double);
+            self.factored = false;
+        }
+        Ok(())
     }
 
     /// Estimated floating-point operations of one numeric factorisation,
@@ -407,7 +452,21 @@ impl CholeskyFactor {
         self.numeric_factorizations += 1;
         self.factored = false;
         if let Some(split) = &mut self.split {
-            let result = split.factorize(values);
+            let mut result = split.factorize(values);
+            if result.is_err() && split.is_mixed() && !self.indefinite_seen {
+                // single precision broke down: the same matrix in double
+                // tells a breakdown of precision (double succeeds: stay
+                // double) from an indefinite matrix (double fails too: stay
+                // mixed, and report later breakdowns as they are; module
+                // docs of `precision`)
+                if let Some(mut double) = split.double().map_err(FactorizeError::Symbolic)? {
+                    result = double.factorize(values);
+                    match result {
+                        Ok(()) => *split = double,
+                        Err(_) => self.indefinite_seen = true,
+                    }
+                }
+            }
             clear_simd(true);
             result.map_err(|p| {
                 FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot: p.0 })
@@ -586,7 +645,11 @@ mod tests {
         p.sym_matvec(&v, &xs, &mut b);
         for ordering in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
             for threads in ThreadPolicy::ALL {
-                let params = CholeskyParams { ordering, threads };
+                let params = CholeskyParams {
+                    ordering,
+                    threads,
+                    ..Default::default()
+                };
                 let mut f = CholeskyFactor::analyze_at(&p, params, Some(coords.clone())).unwrap();
                 assert_eq!(f.params(), params);
                 for _ in 0..3 {
@@ -718,6 +781,7 @@ mod tests {
         p.sym_matvec(&v, &xs, &mut b);
         let params = CholeskyParams {
             threads: ThreadPolicy::Split,
+            precision: FactorPrecision::Double,
             ..Default::default()
         };
         let in_pool = |threads: usize| {
@@ -796,6 +860,7 @@ mod tests {
         let params = CholeskyParams {
             ordering: FillOrdering::BlockAmd,
             threads: ThreadPolicy::Parallel,
+            ..Default::default()
         };
         for choice in [LinearSolver::Cholesky, LinearSolver::Auto] {
             let sys =

@@ -17,10 +17,15 @@
 //! **Stale factors.** With Cholesky, a later Newton step may solve with CG
 //! preconditioned by the last numeric factor instead of factorising again
 //! ([`LinearSystem::solve_stale`], policy in [`reuse`]).
+//!
+//! **Mixed precision.** A large (split) Cholesky factor is by default kept
+//! in single precision and its solves refined by CG in double ([`mixed`],
+//! [`cholesky::FactorPrecision`]).
 
 pub mod adaptive;
 pub mod auto;
 pub mod cholesky;
+pub mod mixed;
 pub mod ordering;
 pub mod pcg;
 pub mod precond;
@@ -75,14 +80,16 @@ pub struct FactorizationFailed {
 /// Outcome of one solve.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SolveInfo {
-    /// CG iterations (0 for Cholesky).
+    /// CG iterations (0 for a direct Cholesky solve; the refinement's with
+    /// a mixed-precision factor).
     pub iterations: usize,
-    /// ‖H d + g‖ / ‖g‖ as reported by PCG (0 for Cholesky).
+    /// ‖H d + g‖ / ‖g‖ as reported by CG (0 for a direct Cholesky solve).
     pub relative_residual: f64,
     /// CG stopped on non-positive curvature (PCG only).
     pub negative_curvature: bool,
     /// Numeric factorisations made by the solve itself (`Auto` after a
-    /// failed PCG attempt; the others factorise in `prepare`).
+    /// failed PCG attempt, a mixed-precision factor turned double; the
+    /// others factorise in `prepare`).
     pub factorizations: usize,
 }
 
@@ -112,8 +119,9 @@ pub struct LinearSystem {
     discarded_analyses: usize,
     /// The Cholesky factor holds a successful numeric factorisation.
     factored: bool,
-    /// CG state for solves preconditioned by a stale factor (allocated on first use).
-    stale: Option<Box<Pcg>>,
+    /// CG state for solves preconditioned by a factor, stale or mixed
+    /// (allocated on first use).
+    cg: Option<Box<Pcg>>,
 }
 
 impl LinearSystem {
@@ -214,7 +222,7 @@ impl LinearSystem {
             analysis,
             discarded_analyses,
             factored: false,
-            stale: None,
+            cg: None,
         })
     }
 
@@ -298,7 +306,8 @@ impl LinearSystem {
         }
     }
 
-    /// Solve (H + δI) d = rhs into `out`. `rel_tol`/`max_iters` only matter for PCG.
+    /// Solve (H + δI) d = rhs into `out`. `rel_tol`/`max_iters` matter for
+    /// PCG; `rel_tol` also for a mixed-precision factor ([`mixed`]).
     pub fn solve(
         &mut self,
         pattern: &Pattern,
@@ -310,11 +319,8 @@ impl LinearSystem {
     ) -> SolveInfo {
         match &mut self.backend {
             Backend::Cholesky(f) => {
-                out.copy_from_slice(rhs);
-                if !f.solve_in_place(out) {
-                    out.fill(f64::NAN);
-                }
-                SolveInfo::default()
+                let cg = self.cg.get_or_insert_with(|| Box::new(Pcg::new(pattern)));
+                mixed::solve_with_factor(f, cg, pattern, values, rhs, out, rel_tol)
             }
             Backend::Pcg(p) => {
                 SolveInfo::from_pcg(p.solve(pattern, values, rhs, out, rel_tol, max_iters))
@@ -341,9 +347,9 @@ impl LinearSystem {
         let (Some(f), true) = (self.cholesky(), self.has_factor()) else {
             return 0;
         };
-        let (bytes, flops) = (f.factor_bytes(), f.factor_flops());
+        let flops = f.factor_flops();
         let (n, nnz) = (pattern.n() as f64, pattern.nnz() as f64);
-        let nnz_l = bytes as f64 / std::mem::size_of::<f64>() as f64;
+        let nnz_l = f.factor_nnz() as f64;
         let iteration = 4.0 * nnz_l + 4.0 * nnz - 2.0 * n + 8.0 * n;
         reuse.budget(flops / limits.factor_speedup, iteration)
     }
@@ -402,9 +408,7 @@ impl LinearSystem {
         if !self.factored {
             return None;
         }
-        let cg = self
-            .stale
-            .get_or_insert_with(|| Box::new(Pcg::new(pattern)));
+        let cg = self.cg.get_or_insert_with(|| Box::new(Pcg::new(pattern)));
         let info = cg.solve_preconditioned(values, rhs, out, rel_tol, max_iters, |r, z| {
             z.copy_from_slice(r);
             if !f.solve_in_place(z) {

@@ -30,6 +30,12 @@
 //! r_S, (5)); backward on [yᵢ; x_S] gives xᵢ = Lᵢ⁻ᵀ(yᵢ − L_Siᵀ x_S), (6).
 //! Everything runs on the calling thread in a fixed order (the same bits
 //! run to run).
+//!
+//! **Precision.** The values are of the scalar `T` ([`Real`]): f64, or f32
+//! for a mixed-precision factor (A's entries rounded on the gather, the
+//! right-hand side rounded on entry to the solves, subnormals flushed while
+//! this half works); Uᵢ and the solve's S entries are read back in f64 by
+//! [`super::split`], which keeps the separator in double.
 
 use std::ops::Range;
 
@@ -45,6 +51,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::{Accum, MatMut, MatRef, Par};
 
+use super::real::Real;
 use super::split::{oom, sub_pattern, zeros};
 use crate::error::FemError;
 use crate::pattern::Pattern;
@@ -68,15 +75,23 @@ struct Node {
 
 /// Scratch of [`Half::update_from`]: the product of a large update and
 /// the target row of each updating row.
-#[derive(Default)]
-struct Scratch {
-    temp: Vec<f64>,
+struct Scratch<T> {
+    temp: Vec<T>,
     map: Vec<usize>,
 }
 
+impl<T> Default for Scratch<T> {
+    fn default() -> Self {
+        Scratch {
+            temp: Vec::new(),
+            map: Vec::new(),
+        }
+    }
+}
+
 /// Bᵢ = A[Pᵢ∪S, Pᵢ∪S]: structure, factor values of its Pᵢ columns and the
-/// separator update Uᵢ of (8).
-pub(super) struct Half {
+/// separator update Uᵢ of (8), in the scalar `T`.
+pub(super) struct Half<T: Real> {
     /// Original unknown of each local one: Pᵢ in fill-reducing order, then S.
     pub(super) unknowns: Vec<usize>,
     /// |Pᵢ|.
@@ -93,17 +108,17 @@ pub(super) struct Half {
     a_rows: Vec<usize>,
     a_slots: Vec<usize>,
     /// Factor values of the Pᵢ supernodes.
-    l: Vec<f64>,
+    l: Vec<T>,
     /// Uᵢ of (8), k×k column-major, lower triangle.
-    pub(super) update: Vec<f64>,
+    pub(super) update: Vec<T>,
     /// Row of a supernode's block holding each local row (scratch).
     rel: Vec<usize>,
     /// Scratch of the descendant updates.
-    scratch: Scratch,
+    scratch: Scratch<T>,
     mem: MemBuffer,
     /// The solve vector: [yᵢ; −L_Si yᵢ] after [`Half::forward`], [xᵢ; x_S]
     /// after [`Half::backward`].
-    pub(super) work: Vec<f64>,
+    pub(super) work: Vec<T>,
     /// Flops Σ c² over the Pᵢ columns (their updates of S included).
     pub(super) flops: f64,
 }
@@ -214,7 +229,7 @@ fn lower_p_columns(
     (ptr, rows, slots)
 }
 
-impl Half {
+impl<T: Real> Half<T> {
     /// Structure of Bᵢ whose unknowns are `unknowns` (the first `n_p` are
     /// Pᵢ, the rest S, each in elimination order) and all its storage.
     pub(super) fn analyse(
@@ -240,7 +255,7 @@ impl Half {
             max_w = max_w.max(w);
             flops += (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>();
         }
-        let req = cholesky_in_place_scratch::<f64>(max_w, Par::Seq, Default::default());
+        let req = cholesky_in_place_scratch::<T>(max_w, Par::Seq, Default::default());
         Ok(Half {
             unknowns,
             n_p,
@@ -261,6 +276,36 @@ impl Half {
         })
     }
 
+    /// The same structure with fresh (zero) storage of the scalar `U`: the
+    /// fallback of a mixed-precision factor to double.
+    pub(super) fn with_scalar<U: Real>(&self) -> Result<Half<U>, FemError> {
+        let max_w = self
+            .nodes
+            .iter()
+            .map(|n| n.end - n.start)
+            .max()
+            .unwrap_or(0);
+        let req = cholesky_in_place_scratch::<U>(max_w, Par::Seq, Default::default());
+        Ok(Half {
+            l: zeros(self.l.len(), "a split factor")?,
+            update: zeros(self.update.len(), "the separator block")?,
+            work: zeros(self.work.len(), "the solve")?,
+            mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
+            scratch: Scratch::default(),
+            unknowns: self.unknowns.clone(),
+            n_p: self.n_p,
+            nodes: self.nodes.clone(),
+            row_idx: self.row_idx.clone(),
+            desc_ptr: self.desc_ptr.clone(),
+            desc: self.desc.clone(),
+            a_ptr: self.a_ptr.clone(),
+            a_rows: self.a_rows.clone(),
+            a_slots: self.a_slots.clone(),
+            rel: self.rel.clone(),
+            flops: self.flops,
+        })
+    }
+
     /// Separator size k.
     pub(super) fn k(&self) -> usize {
         self.unknowns.len() - self.n_p
@@ -274,13 +319,14 @@ impl Half {
     /// Numeric LLᵀ of the Pᵢ columns of Bᵢ (7) and Uᵢ (8), on this thread;
     /// on a non-positive pivot, its local index.
     pub(super) fn factorize(&mut self, values: &[f64]) -> Result<(), usize> {
+        let _flush = T::flush_subnormals();
         for s in 0..self.nodes.len() {
             self.factor_node(s, values)?;
         }
         let (k, n_p, n) = (self.k(), self.n_p, self.unknowns.len());
         let mut update = std::mem::take(&mut self.update);
         let mut scratch = std::mem::take(&mut self.scratch);
-        update.fill(0.0);
+        update.fill(T::default());
         let s = self.nodes.len();
         for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
             self.update_from(&mut scratch, d, &self.l, &mut update, k, n_p..n);
@@ -306,13 +352,13 @@ impl Half {
         let mut scratch = std::mem::take(&mut self.scratch);
         let (head, tail) = l.split_at_mut(val);
         let ls = &mut tail[..m * w];
-        ls.fill(0.0);
+        ls.fill(T::default());
         for j in start..end {
             let col = &mut ls[(j - start) * m..][..m];
             for e in self.a_ptr[j]..self.a_ptr[j + 1] {
                 let i = self.a_rows[e];
                 let li = if i < end { i - start } else { self.rel[i] };
-                col[li] += values[self.a_slots[e]];
+                col[li] += T::of(values[self.a_slots[e]]);
             }
         }
         for &d in &self.desc[self.desc_ptr[s]..self.desc_ptr[s + 1]] {
@@ -328,10 +374,10 @@ impl Half {
     /// (rows at or beyond `cols.end` through `rel`); `l` holds node `d`.
     fn update_from(
         &self,
-        scratch: &mut Scratch,
+        scratch: &mut Scratch<T>,
         d: usize,
-        l: &[f64],
-        target: &mut [f64],
+        l: &[T],
+        target: &mut [T],
         m: usize,
         cols: Range<usize>,
     ) {
@@ -369,13 +415,13 @@ impl Half {
             return;
         }
         if temp.len() < nb * nm {
-            temp.resize(nb * nm, 0.0);
+            temp.resize(nb * nm, T::default());
         }
         let ldm = MatRef::from_column_major_slice(ld, md, wd);
         let below = ldm.subrows(wd + p0, nb);
         let mid = ldm.subrows(wd + p0, nm);
         let t = MatMut::from_column_major_slice_mut(&mut temp[..nb * nm], nb, nm);
-        matmul(t, Accum::Replace, below, mid.transpose(), 1.0, Par::Seq);
+        matmul(t, Accum::Replace, below, mid.transpose(), T::ONE, Par::Seq);
         for c in 0..nm {
             let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
             for (&to, t) in map[c..].iter().zip(&temp[c * nb + c..(c + 1) * nb]) {
@@ -386,12 +432,13 @@ impl Half {
 
     /// Forward solve (see the module docs): `work` = [yᵢ; −L_Si yᵢ].
     pub(super) fn forward(&mut self, b: &[f64]) {
+        let _flush = T::flush_subnormals();
         let n_p = self.n_p;
         let work = &mut self.work;
         for (w, &u) in work.iter_mut().zip(&self.unknowns[..n_p]) {
-            *w = b[u];
+            *w = T::of(b[u]);
         }
-        work[n_p..].fill(0.0);
+        work[n_p..].fill(T::default());
         for node in &self.nodes {
             let (start, w) = (node.start, node.end - node.start);
             let rows = &self.row_idx[node.rows.clone()];
@@ -413,8 +460,11 @@ impl Half {
 
     /// Backward solve (6): `work` = [xᵢ; x_S] from [yᵢ; ·] and x_S.
     pub(super) fn backward(&mut self, x_s: &[f64]) {
+        let _flush = T::flush_subnormals();
         let work = &mut self.work;
-        work[self.n_p..].copy_from_slice(x_s);
+        for (w, &x) in work[self.n_p..].iter_mut().zip(x_s) {
+            *w = T::of(x);
+        }
         for node in self.nodes.iter().rev() {
             let (start, w) = (node.start, node.end - node.start);
             let rows = &self.row_idx[node.rows.clone()];
@@ -438,7 +488,12 @@ impl Half {
 /// Dense part of a supernode (m×w column-major `ls`): Cholesky of the w×w
 /// diagonal block, then the rows below ← rows below · L⁻ᵀ. On a
 /// non-positive pivot, its index in the block.
-fn dense_node(ls: &mut [f64], m: usize, w: usize, stack: &mut MemStack) -> Result<(), usize> {
+fn dense_node<T: Real>(
+    ls: &mut [T],
+    m: usize,
+    w: usize,
+    stack: &mut MemStack,
+) -> Result<(), usize> {
     let node = MatMut::from_column_major_slice_mut(ls, m, w);
     let (mut top, mut bot) = node.split_at_row_mut(w);
     cholesky_in_place(

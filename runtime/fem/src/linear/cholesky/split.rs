@@ -59,6 +59,11 @@
 //! share of the plain factorisation's (their updates of S included). Each
 //! half is sequential and the reductions run in a fixed order, so the result
 //! is the same bits run to run for a given number of threads.
+//!
+//! **Precision.** The halves hold their factors in the scalar `T`
+//! ([`super::real`]); Σ, L_Σ and x_S are always f64 (the dense separator is
+//! a small part of the work, and it keeps the halves' updates Uᵢ summed in
+//! double).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError, cholesky_in_place, cholesky_in_place_scratch};
@@ -69,6 +74,7 @@ use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{MatMut, MatRef, Par};
 
 use super::half::Half;
+use super::real::Real;
 use super::tree::{Part, split};
 use crate::error::FemError;
 use crate::pattern::Pattern;
@@ -89,10 +95,10 @@ pub(super) fn oom(what: &str) -> FemError {
 /// backing it with transparent huge pages (`madvise`) did not help (direct
 /// compaction on fault); touched here it costs ≈ 0.35 s of setup and the
 /// first factorisation takes 1.65 s.
-pub(super) fn zeros(len: usize, what: &str) -> Result<Vec<f64>, FemError> {
+pub(super) fn zeros<T: Clone + Default>(len: usize, what: &str) -> Result<Vec<T>, FemError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len).map_err(|_| oom(what))?;
-    v.resize(len, 0.0);
+    v.resize(len, T::default());
     Ok(v)
 }
 
@@ -141,9 +147,9 @@ pub(super) fn sub_pattern(
     (col_ptr, row_idx, gather)
 }
 
-/// The two-way split factor of (1)–(3).
-pub(crate) struct SplitFactor {
-    halves: [Half; 2],
+/// The two-way split factor of (1)–(3), its halves in the scalar `T`.
+pub(crate) struct SplitFactor<T: Real> {
+    halves: [Half<T>; 2],
     /// Original unknowns of S, in the order of Σ.
     sep: Vec<usize>,
     /// (row, column, slot in A) of the lower triangle of ASS in Σ's order.
@@ -161,7 +167,7 @@ pub(crate) struct SplitFactor {
 /// order (P₁, P₂, S).
 pub(crate) struct SplitPivot(pub usize);
 
-impl SplitFactor {
+impl<T: Real> SplitFactor<T> {
     /// Split the supernodal tree of the plain analysis `symbolic` of
     /// `pattern` ([`super::tree`]) and analyse both halves; `None` if the
     /// plain factor is simplicial or (unless `force`) no split is estimated
@@ -198,7 +204,7 @@ impl SplitFactor {
         Self::with_halves(pattern, halves).map(Some)
     }
 
-    fn with_halves(pattern: &Pattern, halves: [Half; 2]) -> Result<Self, FemError> {
+    fn with_halves(pattern: &Pattern, halves: [Half<T>; 2]) -> Result<Self, FemError> {
         let sep = halves[0].unknowns[halves[0].n_p..].to_vec();
         let k = sep.len();
         let (col_ptr, row_idx, gather) = sub_pattern(pattern, &sep);
@@ -223,6 +229,27 @@ impl SplitFactor {
         })
     }
 
+    /// The same split with fresh storage in the scalar `U` (the fallback of
+    /// a mixed-precision factor to double); `self` is left as it was.
+    pub(crate) fn with_scalar<U: Real>(&self) -> Result<SplitFactor<U>, FemError> {
+        let k = self.sep.len();
+        let [h1, h2] = &self.halves;
+        Ok(SplitFactor {
+            halves: [h1.with_scalar()?, h2.with_scalar()?],
+            sep: self.sep.clone(),
+            a_ss: self.a_ss.clone(),
+            schur: zeros(k * k, "the separator's Schur complement")?,
+            dense_mem: MemBuffer::try_new(cholesky_in_place_scratch::<f64>(
+                k,
+                Self::dense_par(k),
+                Default::default(),
+            ))
+            .map_err(|_| oom("scratch"))?,
+            x_s: zeros(k, "the solve")?,
+            phases: [0.0; 4],
+        })
+    }
+
     fn dense_par(k: usize) -> Par {
         if k >= DENSE_PARALLEL_MIN && rayon::current_num_threads() > 1 {
             Par::rayon(0)
@@ -240,6 +267,13 @@ impl SplitFactor {
     pub(crate) fn nnz(&self) -> usize {
         let k = self.sep.len();
         self.halves.iter().map(|h| h.len_val()).sum::<usize>() + k * (k + 1) / 2
+    }
+
+    /// Bytes of the stored values (the halves' in `T`, L_Σ's k×k in f64).
+    pub(crate) fn bytes(&self) -> usize {
+        let k = self.sep.len();
+        let halves = self.halves.iter().map(|h| h.len_val()).sum::<usize>();
+        halves * std::mem::size_of::<T>() + k * k * std::mem::size_of::<f64>()
     }
 
     /// Flops Σ_{j<k} (k − j)² ≈ k³/3 of the dense L_Σ, in the measure of
@@ -277,7 +311,7 @@ impl SplitFactor {
     pub(crate) fn factorize(&mut self, values: &[f64]) -> Result<(), SplitPivot> {
         let t0 = std::time::Instant::now();
         let [h1, h2] = &mut self.halves;
-        let timed = |h: &mut Half| {
+        let timed = |h: &mut Half<T>| {
             let t = std::time::Instant::now();
             let r = h.factorize(values);
             (r, t.elapsed().as_secs_f64())
@@ -305,7 +339,7 @@ impl SplitFactor {
                 .zip(&u1[at.clone()])
                 .zip(&u2[at])
             {
-                *s = a + b;
+                *s = (*a).into() + (*b).into();
             }
         }
         for &(c, r, slot) in &self.a_ss {
@@ -350,7 +384,7 @@ impl SplitFactor {
         }
         let [z1, z2] = [0, 1].map(|i| &self.halves[i].work[self.halves[i].n_p..]);
         for (j, x) in self.x_s.iter_mut().enumerate() {
-            *x = rhs[self.sep[j]] + z1[j] + z2[j];
+            *x = rhs[self.sep[j]] + z1[j].into() + z2[j].into();
         }
         if k > 0 {
             let l = MatRef::from_column_major_slice(&self.schur, k, k);
@@ -363,7 +397,7 @@ impl SplitFactor {
         rayon::join(|| h1.backward(x_s), || h2.backward(x_s));
         for h in &self.halves {
             for (&u, &x) in h.unknowns[..h.n_p].iter().zip(&h.work) {
-                rhs[u] = x;
+                rhs[u] = x.into();
             }
         }
         for (&u, &x) in self.sep.iter().zip(&self.x_s) {
@@ -390,11 +424,11 @@ pub(crate) mod tests {
     /// abort) for a size no allocator can give.
     #[test]
     fn zeros_are_zero_and_an_impossible_size_is_an_error() {
-        assert!(zeros(0, "nothing").unwrap().is_empty());
-        let v = zeros(1 << 20, "a megavalue").unwrap();
+        assert!(zeros::<f64>(0, "nothing").unwrap().is_empty());
+        let v = zeros::<f64>(1 << 20, "a megavalue").unwrap();
         assert_eq!(v.len(), 1 << 20);
         assert!(v.iter().all(|&x| x.to_bits() == 0));
-        let e = zeros(usize::MAX / 4, "a huge factor").unwrap_err();
+        let e = zeros::<f64>(usize::MAX / 4, "a huge factor").unwrap_err();
         assert!(
             format!("{e}").contains("out of memory for a huge factor"),
             "{e}"
@@ -501,7 +535,7 @@ pub(crate) mod tests {
     /// The split of `p` from faer's AMD analysis made supernodal whatever
     /// its size (below 100 unknowns, fundamental supernodes: relaxation would
     /// merge a tiny matrix into one supernode, which cannot be split).
-    pub(crate) fn analyse(p: &Pattern) -> Option<SplitFactor> {
+    pub(crate) fn analyse<T: Real>(p: &Pattern) -> Option<SplitFactor<T>> {
         let n = p.n();
         let a = SymbolicSparseColMatRef::new_checked(n, n, p.col_ptr(), None, p.row_idx());
         let mut params = CholeskySymbolicParams {
@@ -518,7 +552,7 @@ pub(crate) mod tests {
     }
 
     /// No entry of A couples the two halves' P parts.
-    fn halves_are_uncoupled(p: &Pattern, split: &SplitFactor) {
+    fn halves_are_uncoupled<T: Real>(p: &Pattern, split: &SplitFactor<T>) {
         let mut side = vec![2usize; p.n()];
         for (i, h) in split.halves.iter().enumerate() {
             h.unknowns[..h.n_p].iter().for_each(|&u| side[u] = i);
@@ -534,9 +568,12 @@ pub(crate) mod tests {
         assert!(split.halves.iter().all(|h| h.n_p > 0));
     }
 
-    /// Split solve vs the plain factorisation on random SPD values.
-    fn agrees_with_plain(p: &Pattern, expect_separator: bool) {
-        let mut split = analyse(p).unwrap_or_else(|| panic!("not splittable: n = {}", p.n()));
+    /// Split solve vs the plain (double) factorisation on random SPD
+    /// values: to rounding in double, to single precision's (these
+    /// matrices are well conditioned) with f32 halves.
+    fn agrees_with_plain<T: Real>(p: &Pattern, expect_separator: bool) {
+        let tol = if T::SINGLE { 1e-5 } else { 1e-12 };
+        let mut split = analyse::<T>(p).unwrap_or_else(|| panic!("not splittable: n = {}", p.n()));
         halves_are_uncoupled(p, &split);
         assert_eq!(split.separator_len() > 0, expect_separator);
         let mut plain = CholeskyFactor::analyze(p).unwrap();
@@ -551,37 +588,74 @@ pub(crate) mod tests {
             split.solve_in_place(&mut xs);
             assert!(plain.solve_in_place(&mut xp));
             let res = rel_residual(p, &v, &xs, &b);
-            assert!(res <= 1e-12, "relative residual {res:e}");
+            assert!(res <= tol, "relative residual {res:e}");
             let scale = xp.iter().fold(0.0f64, |m, a| m.max(a.abs()));
             let diff = xs
                 .iter()
                 .zip(&xp)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(diff <= 1e-12 * scale, "split vs plain: {diff:e}");
+            assert!(diff <= tol * scale, "split vs plain: {diff:e}");
+            if T::SINGLE {
+                assert!(res >= 1e-10, "single precision shows: {res:e}");
+            }
         }
     }
 
     #[test]
     fn split_solves_agree_with_the_plain_factorisation() {
-        agrees_with_plain(&grid(30, 20, 2), true);
-        agrees_with_plain(&grid(12, 9, 3), true);
-        agrees_with_plain(&grid(3, 2, 1), true);
+        agrees_with_plain::<f64>(&grid(30, 20, 2), true);
+        agrees_with_plain::<f64>(&grid(12, 9, 3), true);
+        agrees_with_plain::<f64>(&grid(3, 2, 1), true);
+    }
+
+    #[test]
+    fn single_precision_halves_agree_to_single_precision() {
+        agrees_with_plain::<f32>(&grid(30, 20, 2), true);
+        agrees_with_plain::<f32>(&grid(12, 9, 3), true);
+        agrees_with_plain::<f32>(&two_grids(7, 6, 2).0, false);
     }
 
     #[test]
     fn an_empty_separator_splits_disconnected_halves() {
-        agrees_with_plain(&two_grids(7, 6, 2).0, false);
+        agrees_with_plain::<f64>(&two_grids(7, 6, 2).0, false);
     }
 
     #[test]
     fn an_unsplittable_graph_is_reported_not_forced() {
-        assert!(analyse(&triangle().0).is_none());
+        assert!(analyse::<f64>(&triangle().0).is_none());
+    }
+
+    /// The fallback of a mixed factor: `with_scalar` keeps the structure, so
+    /// the converted split factorises and solves to the same bits as a split
+    /// analysed in double.
+    #[test]
+    fn a_single_split_turned_double_is_the_double_split() {
+        let p = grid(30, 20, 2);
+        let v = random_spd(&p, 5);
+        let b: Vec<f64> = (0..p.n()).map(|i| (0.3 * i as f64).sin()).collect();
+        let solve = |s: &mut SplitFactor<f64>| {
+            s.factorize(&v).ok().unwrap();
+            let mut x = b.clone();
+            s.solve_in_place(&mut x);
+            x.iter().map(|a| a.to_bits()).collect::<Vec<_>>()
+        };
+        let mut single = analyse::<f32>(&p).unwrap();
+        single.factorize(&v).ok().unwrap();
+        let mut converted = single.with_scalar::<f64>().unwrap();
+        assert_eq!(solve(&mut converted), solve(&mut analyse(&p).unwrap()));
+        let halves: usize = single.halves.iter().map(|h| h.len_val()).sum();
+        assert_eq!(converted.bytes(), single.bytes() + 4 * halves);
     }
 
     #[test]
     fn an_indefinite_matrix_is_reported_in_either_half_or_the_separator() {
+        an_indefinite_matrix_is_reported::<f64>();
+        an_indefinite_matrix_is_reported::<f32>();
+    }
+
+    fn an_indefinite_matrix_is_reported<T: Real>() {
         let p = grid(20, 10, 2);
-        let mut split = analyse(&p).unwrap();
+        let mut split = analyse::<T>(&p).unwrap();
         let n = p.n();
         for bad in [0, n / 2, n - 1] {
             let mut v = random_spd(&p, 7);
@@ -595,11 +669,16 @@ pub(crate) mod tests {
 
     #[test]
     fn the_split_is_the_same_bits_run_to_run() {
+        same_bits_run_to_run::<f64>();
+        same_bits_run_to_run::<f32>();
+    }
+
+    fn same_bits_run_to_run<T: Real>() {
         let p = grid(40, 30, 2);
         let v = random_spd(&p, 3);
         let b: Vec<f64> = (0..p.n()).map(|i| (0.1 * i as f64).cos()).collect();
         let run = || {
-            let mut s = analyse(&p).unwrap();
+            let mut s = analyse::<T>(&p).unwrap();
             s.factorize(&v).ok().unwrap();
             let mut x = b.clone();
             s.solve_in_place(&mut x);
