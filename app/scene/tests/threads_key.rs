@@ -83,11 +83,12 @@ fn the_keys_round_trip_and_are_omitted_when_unset() {
     );
 }
 
-/// A small disk parameterisation with `solver` keys, in a pool of `threads`.
-fn linear_json(solver: &str, threads: usize) -> serde_json::Value {
+/// The summary of `[effects.parameterize]` on a generated disk of `rings`
+/// rings with `solver` keys, in a pool of `threads`.
+fn disk_summary(rings: usize, solver: &str, threads: usize) -> serde_json::Value {
     let text = format!(
-        "[mesh]\ngenerate = \"disk\"\nrings = 6\n[energy]\nname = \"sd\"\n\
-         [effects.parameterize]\ntutte = \"uniform\"\n[solver]\ntol = 1e-8\n{solver}\n"
+        "[mesh]\ngenerate = \"disk\"\nrings = {rings}\n[energy]\nname = \"sd\"\n\
+         [effects.parameterize]\ntutte = \"uniform\"\n[solver]\n{solver}\n"
     );
     let f = SceneFile::parse(&text, "scene.toml", ".").unwrap();
     let opts = RunOptions {
@@ -103,7 +104,13 @@ fn linear_json(solver: &str, threads: usize) -> serde_json::Value {
         .unwrap()
         .summary;
     assert!(s.frames[1].converged, "{solver}");
-    serde_json::to_value(&s).unwrap()["linear"].clone()
+    serde_json::to_value(&s).unwrap()
+}
+
+/// A small (6-ring) disk solved to 1e-8 with `solver` keys, in a pool of
+/// `threads`: its `linear` summary.
+fn linear_json(solver: &str, threads: usize) -> serde_json::Value {
+    disk_summary(6, &format!("tol = 1e-8\n{solver}"), threads)["linear"].clone()
 }
 
 #[test]
@@ -130,28 +137,10 @@ fn the_summary_reports_the_policy_ordering_and_split() {
     );
 }
 
-/// `[effects.parameterize]` on a 60-ring disk (≈ 22k triangles, large
-/// enough to split on two threads) with `solver` keys: its summary.
+/// A 60-ring disk (≈ 22k triangles, large enough to split on two threads)
+/// with `linear = "cholesky"` and `solver` keys: its summary.
 fn split_disk_json(solver: &str) -> serde_json::Value {
-    let text = format!(
-        "[mesh]\ngenerate = \"disk\"\nrings = 60\n[energy]\nname = \"sd\"\n\
-         [effects.parameterize]\ntutte = \"uniform\"\n[solver]\nlinear = \"cholesky\"\n{solver}\n"
-    );
-    let f = SceneFile::parse(&text, "scene.toml", ".").unwrap();
-    let opts = RunOptions {
-        dry_run: true,
-        ..Default::default()
-    };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap();
-    let s = pool
-        .install(|| run_scene(&f, &RuntimeEnergies, &opts, &mut Silent))
-        .unwrap()
-        .summary;
-    assert!(s.frames[1].converged, "{solver}");
-    serde_json::to_value(&s).unwrap()
+    disk_summary(60, &format!("linear = \"cholesky\"\n{solver}"), 2)
 }
 
 /// A split factor is mixed by default: every Newton step refines its solve
