@@ -13,7 +13,10 @@
 //! matrix in double: if that succeeds the factor stays double; if it fails
 //! too the matrix is indefinite (a raw Hessian: the Newton shift takes
 //! over), the factor stays mixed and its later breakdowns are reported
-//! without the retry (one double attempt per factor). Only split factors (the large
+//! without the retry (one double attempt per factor). The retry and the
+//! fallback allocate the double factor beside the mixed one: for a moment
+//! 1.5× the double factor's memory (`factor_bytes` and `auto`'s memory
+//! limit count the mixed factor's own, half the halves' bytes). Only split factors (the large
 //! systems, [`super::SPLIT_MIN_FLOPS`]) are ever mixed: below, the
 //! factorisation is cheap next to the assembly and stays double.
 
