@@ -13,13 +13,13 @@
 //! and flagged `noise_limited`: the gradient-norm test, not the energy,
 //! decides convergence from there.
 //!
-//! **Extrapolation** (opt-in, [`extrapolation`]). When the full step α = 1
+//! **Extrapolation** (opt-in, `extrapolation`). When the full step α = 1
 //! passed and nothing bounds the step, the minimiser of the parabola
 //! through E(0), E'(0) = ∇Eᵀd and E(1) (Nocedal & Wright 2006, eq. 3.57),
 //!
 //!   φ(α) = E(0) + α ∇Eᵀd + c α²,  c = E(1) − E(0) − ∇Eᵀd,  α* = −∇Eᵀd / 2c,
 //!
-//! is tried once (at most [`EXTRAPOLATION_CAP`]) and kept if it lowers E
+//! is tried once (at most `EXTRAPOLATION_CAP`) and kept if it lowers E
 //! further. On the symmetric Dirichlet parameterisations the Newton step is
 //! short: the energy along d keeps falling to α ≈ 1.25–1.5 at most
 //! iterations, and the gradient falls by only ≈ 0.42 per step whatever the
