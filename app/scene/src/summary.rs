@@ -114,11 +114,7 @@ impl LinearWork {
             self.threads = Some(f.params().threads);
             self.ordering = Some(f.params().ordering);
             self.split = Some(f.split().is_some());
-            self.precision = Some(if f.is_mixed() {
-                ecc_fem::linear::cholesky::FactorPrecision::Mixed
-            } else {
-                ecc_fem::linear::cholesky::FactorPrecision::Double
-            });
+            self.precision = Some(f.precision());
         }
         self
     }

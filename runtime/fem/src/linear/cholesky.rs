@@ -340,6 +340,17 @@ impl CholeskyFactor {
         self.split.as_ref().is_some_and(Split::is_mixed)
     }
 
+    /// The precision of the factor now: [`FactorPrecision::Mixed`] for a
+    /// mixed split ([`CholeskyFactor::is_mixed`]), otherwise double (not
+    /// split, asked double, or fallen back to double).
+    pub fn precision(&self) -> FactorPrecision {
+        if self.is_mixed() {
+            FactorPrecision::Mixed
+        } else {
+            FactorPrecision::Double
+        }
+    }
+
     /// Whether a mixed factor has met a matrix indefinite in double too.
     #[cfg(test)]
     pub(crate) fn indefinite_seen(&self) -> bool {
@@ -350,13 +361,11 @@ impl CholeskyFactor {
     /// storage, to be factorised again); nothing for any other factor. On an
     /// allocation failure the factor stays as it was.
     pub fn to_double(&mut self) -> Result<(), FemError> {
-        if let Some(double) = self
-            .split
-            .as_ref()
-            .map(Split::double)
-            .transpose()?
-            .flatten()
-        {
+        let double = match &self.split {
+            Some(split) => split.double()?,
+            None => None,
+        };
+        if let Some(double) = double {
             self.split = Some(double);
             self.factored = false;
         }

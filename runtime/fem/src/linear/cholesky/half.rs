@@ -89,6 +89,31 @@ impl<T> Default for Scratch<T> {
     }
 }
 
+/// The value storage of a half in the scalar `T`, zeroed (see [`zeros`]).
+struct Storage<T> {
+    /// The Pᵢ supernodes' `len` factor values.
+    l: Vec<T>,
+    /// Uᵢ, k×k.
+    update: Vec<T>,
+    /// The solve vector, n entries.
+    work: Vec<T>,
+    /// Scratch of the dense Cholesky of the widest supernode.
+    mem: MemBuffer,
+}
+
+impl<T: Real> Storage<T> {
+    fn new(nodes: &[Node], len: usize, k: usize, n: usize) -> Result<Self, FemError> {
+        let max_w = nodes.iter().map(|n| n.end - n.start).max().unwrap_or(0);
+        let req = cholesky_in_place_scratch::<T>(max_w, Par::Seq, Default::default());
+        Ok(Storage {
+            l: zeros(len, "a split factor")?,
+            update: zeros(k * k, "the separator block")?,
+            work: zeros(n, "the solve")?,
+            mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
+        })
+    }
+}
+
 /// Bᵢ = A[Pᵢ∪S, Pᵢ∪S]: structure, factor values of its Pᵢ columns and the
 /// separator update Uᵢ of (8), in the scalar `T`.
 pub(super) struct Half<T: Real> {
@@ -248,14 +273,18 @@ impl<T: Real> Half<T> {
         drop(symbolic);
         let (desc_ptr, desc) = descendants(&nodes, &rows, n_p);
         let (a_ptr, a_rows, a_slots) = lower_p_columns(n_p, &col_ptr, &row_idx, &gather);
-        let (mut len, mut max_w, mut flops) = (0, 0, 0.0);
+        let (mut len, mut flops) = (0, 0.0);
         for node in &nodes {
             let (w, r) = (node.end - node.start, node.rows.len());
             len = node.val + (w + r) * w;
-            max_w = max_w.max(w);
             flops += (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>();
         }
-        let req = cholesky_in_place_scratch::<T>(max_w, Par::Seq, Default::default());
+        let Storage {
+            l,
+            update,
+            work,
+            mem,
+        } = Storage::new(&nodes, len, k, n)?;
         Ok(Half {
             unknowns,
             n_p,
@@ -266,12 +295,12 @@ impl<T: Real> Half<T> {
             a_ptr,
             a_rows,
             a_slots,
-            l: zeros(len, "a split factor")?,
-            update: zeros(k * k, "the separator block")?,
+            l,
+            update,
             rel: vec![0; n],
             scratch: Scratch::default(),
-            mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
-            work: zeros(n, "the solve")?,
+            mem,
+            work,
             flops,
         })
     }
@@ -279,18 +308,18 @@ impl<T: Real> Half<T> {
     /// The same structure with fresh (zero) storage of the scalar `U`: the
     /// fallback of a mixed-precision factor to double.
     pub(super) fn with_scalar<U: Real>(&self) -> Result<Half<U>, FemError> {
-        let max_w = self
-            .nodes
-            .iter()
-            .map(|n| n.end - n.start)
-            .max()
-            .unwrap_or(0);
-        let req = cholesky_in_place_scratch::<U>(max_w, Par::Seq, Default::default());
+        let (n, k) = (self.unknowns.len(), self.k());
+        let Storage {
+            l,
+            update,
+            work,
+            mem,
+        } = Storage::new(&self.nodes, self.l.len(), k, n)?;
         Ok(Half {
-            l: zeros(self.l.len(), "a split factor")?,
-            update: zeros(self.update.len(), "the separator block")?,
-            work: zeros(self.work.len(), "the solve")?,
-            mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
+            l,
+            update,
+            work,
+            mem,
             scratch: Scratch::default(),
             unknowns: self.unknowns.clone(),
             n_p: self.n_p,

@@ -214,6 +214,17 @@ impl<T: Real> SplitFactor<T> {
                 a_ss.push((j, row_idx[e], gather[e]));
             }
         }
+        Self::with_separator(halves, sep, a_ss)
+    }
+
+    /// The split of `halves` with separator `sep` (ASS at `a_ss`) and fresh
+    /// storage for Σ, its dense factorisation and x_S.
+    fn with_separator(
+        halves: [Half<T>; 2],
+        sep: Vec<usize>,
+        a_ss: Vec<(usize, usize, usize)>,
+    ) -> Result<Self, FemError> {
+        let k = sep.len();
         let par = Self::dense_par(k);
         let dense_mem =
             MemBuffer::try_new(cholesky_in_place_scratch::<f64>(k, par, Default::default()))
@@ -232,22 +243,9 @@ impl<T: Real> SplitFactor<T> {
     /// The same split with fresh storage in the scalar `U` (the fallback of
     /// a mixed-precision factor to double); `self` is left as it was.
     pub(crate) fn with_scalar<U: Real>(&self) -> Result<SplitFactor<U>, FemError> {
-        let k = self.sep.len();
         let [h1, h2] = &self.halves;
-        Ok(SplitFactor {
-            halves: [h1.with_scalar()?, h2.with_scalar()?],
-            sep: self.sep.clone(),
-            a_ss: self.a_ss.clone(),
-            schur: zeros(k * k, "the separator's Schur complement")?,
-            dense_mem: MemBuffer::try_new(cholesky_in_place_scratch::<f64>(
-                k,
-                Self::dense_par(k),
-                Default::default(),
-            ))
-            .map_err(|_| oom("scratch"))?,
-            x_s: zeros(k, "the solve")?,
-            phases: [0.0; 4],
-        })
+        let halves = [h1.with_scalar()?, h2.with_scalar()?];
+        SplitFactor::with_separator(halves, self.sep.clone(), self.a_ss.clone())
     }
 
     fn dense_par(k: usize) -> Par {
