@@ -367,6 +367,14 @@ mod metis_nd {
     use super::Supervariables;
     use crate::error::FemError;
 
+    /// Held around every METIS call: METIS keeps its random number
+    /// generator in process-wide statics (GKlib's Mersenne twister `mt[]`,
+    /// `mti` in `random.c`), reseeded by every `METIS_NodeND`. Two solvers
+    /// ordering at once in one process (threads of a Dask worker, a Rust
+    /// caller's own threads) would race on them: a nondeterministic
+    /// ordering, or a read past `mt[]` when both advance `mti` at once.
+    static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
     /// `METIS_NodeND` on the group graph, weights = group sizes.
     pub(super) fn node_nd(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
         let ng = sv.len();
@@ -394,6 +402,9 @@ mod metis_nd {
         let mut iperm = vec![0i32; ng];
         // SAFETY: every array has the length METIS reads (nvtxs + 1, xadj[nvtxs],
         // nvtxs, nvtxs, nvtxs); options = NULL selects METIS's defaults.
+        // a panic elsewhere while holding the lock leaves METIS's state as
+        // valid as any finished call does: the poison is ignored
+        let _one_at_a_time = METIS.lock().unwrap_or_else(|e| e.into_inner());
         let status = unsafe {
             metis_sys::METIS_NodeND(
                 &mut nvtxs,
@@ -524,6 +535,32 @@ pub(crate) mod tests {
                 assert_eq!(pair[1], pair[0] + 1, "{o:?}");
             }
         }
+    }
+
+    /// METIS from many threads at once (each call reseeds and draws from
+    /// METIS's process-wide random state) gives every thread the ordering
+    /// of a call on its own: the calls are serialised.
+    #[cfg(feature = "metis")]
+    #[test]
+    fn concurrent_metis_orderings_are_those_of_one_at_a_time() {
+        let p = grid(30, 30, 2);
+        let alone = permutation(&p, FillOrdering::Metis, None).unwrap().0;
+        std::thread::scope(|s| {
+            let runs: Vec<_> = (0..8)
+                .map(|_| {
+                    s.spawn(|| {
+                        (0..4)
+                            .map(|_| permutation(&p, FillOrdering::Metis, None).unwrap().0)
+                            .collect::<Vec<_>>()
+                    })
+                })
+                .collect();
+            for r in runs {
+                for perm in r.join().unwrap() {
+                    assert_eq!(perm, alone);
+                }
+            }
+        });
     }
 
     #[cfg(not(feature = "metis"))]
