@@ -46,9 +46,13 @@ fn every_policy_and_ordering_is_selected_by_its_name() {
 }
 
 #[test]
-fn the_precision_is_mixed_unless_asked_double() {
-    assert_eq!(params_of("").unwrap().precision, FactorPrecision::Mixed);
-    for p in [FactorPrecision::Mixed, FactorPrecision::Double] {
+fn the_precision_is_auto_unless_asked() {
+    assert_eq!(params_of("").unwrap().precision, FactorPrecision::Auto);
+    for p in [
+        FactorPrecision::Auto,
+        FactorPrecision::Mixed,
+        FactorPrecision::Double,
+    ] {
         let name = serde_json::to_value(p).unwrap();
         let got = params_of(&format!("precision = {name}")).unwrap();
         assert_eq!(got.precision, p);
@@ -143,13 +147,14 @@ fn split_disk_json(solver: &str) -> serde_json::Value {
     disk_summary(60, &format!("linear = \"cholesky\"\n{solver}"), 2)
 }
 
-/// A split factor is mixed by default: every Newton step refines its solve
-/// by CG (so `cg_iterations` counts at least one per Newton iteration; this
-/// disk's trust-region steps on raw Hessians also leave the factor mixed);
-/// `precision = "double"` solves directly. Both are reported.
+/// A mixed split factor refines every Newton step's solve by CG (so
+/// `cg_iterations` counts at least one per Newton iteration; this disk's
+/// trust-region steps on raw Hessians also leave the factor mixed);
+/// `precision = "double"` solves directly, and so does the default `auto`
+/// on this disk, below `MIXED_MIN_FLOPS`. All are reported.
 #[test]
 fn the_summary_reports_the_precision_and_the_refinement() {
-    let run = split_disk_json("");
+    let run = split_disk_json("precision = \"mixed\"");
     let mixed = &run["linear"];
     assert_eq!(mixed["split"], true, "{mixed}");
     assert_eq!(mixed["precision"], "mixed");
@@ -158,10 +163,12 @@ fn the_summary_reports_the_precision_and_the_refinement() {
         cg.as_u64() >= newton.as_u64() && newton.as_u64() > Some(0),
         "{run}"
     );
-    let double = &split_disk_json("precision = \"double\"")["linear"];
-    assert_eq!(double["split"], true);
-    assert_eq!(double["precision"], "double");
-    assert_eq!(double["cg_iterations"], 0);
+    for asked in ["precision = \"double\"", ""] {
+        let double = &split_disk_json(asked)["linear"];
+        assert_eq!(double["split"], true, "{asked}");
+        assert_eq!(double["precision"], "double", "{asked}");
+        assert_eq!(double["cg_iterations"], 0, "{asked}");
+    }
     // a factor that is not split is double whatever was asked
     let small = linear_json("linear = \"cholesky\"", 2);
     assert_eq!(small["split"], false);

@@ -446,8 +446,9 @@ pub struct SolverSpec {
     /// (`ecc_fem::linear::cholesky::ThreadPolicy`; docs/benchmarks/threads.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub threads: Option<ecc_fem::linear::cholesky::ThreadPolicy>,
-    /// Precision of a split Cholesky factor: `mixed` (default: its halves
-    /// in single precision, solves refined by CG in double) or `double`
+    /// Precision of a split Cholesky factor: `auto` (default: mixed for
+    /// large factors, double below), `mixed` (its halves in single
+    /// precision, solves refined by CG in double) or `double`
     /// (`ecc_fem::linear::cholesky::FactorPrecision`;
     /// docs/benchmarks/million.md, "Mixed precision").
     #[serde(default, skip_serializing_if = "Option::is_none")]

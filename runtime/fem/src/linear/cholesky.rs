@@ -33,7 +33,7 @@ mod split;
 mod threads;
 mod tree;
 
-pub use precision::FactorPrecision;
+pub use precision::{FactorPrecision, MIXED_MIN_FLOPS};
 pub use threads::{REPROBE_EVERY, ThreadPolicy};
 
 /// [`ecc_util::clear_upper_simd`] on this thread and, when faer's kernels
@@ -139,7 +139,7 @@ fn split_for(
         && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
         && flops(symbolic) >= SPLIT_MIN_FLOPS;
     if wanted {
-        Split::analyse(pattern, symbolic, params.precision)
+        Split::analyse(pattern, symbolic, params.precision, flops(symbolic))
     } else {
         Ok(None)
     }

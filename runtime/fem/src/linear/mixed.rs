@@ -117,7 +117,7 @@ mod tests {
         two_threads(|| {
             let (p, v, b) = system();
             let mut f = factor(&p, FactorPrecision::Mixed);
-            assert!(f.is_mixed(), "the default, on a split factor");
+            assert!(f.is_mixed(), "as asked, on a split factor");
             f.factorize(&p, &v).unwrap();
             let mut cg = Pcg::new(&p);
             let mut x = vec![0.0; p.n()];

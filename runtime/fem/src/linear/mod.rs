@@ -19,8 +19,8 @@
 //! ([`LinearSystem::solve_stale`], policy in [`reuse`]).
 //!
 //! **Mixed precision.** A large (split) Cholesky factor is by default kept
-//! in single precision and its solves refined by CG in double ([`mixed`],
-//! [`cholesky::FactorPrecision`]).
+//! in single precision from [`cholesky::MIXED_MIN_FLOPS`] on and its solves
+//! refined by CG in double ([`mixed`], [`cholesky::FactorPrecision`]).
 
 pub mod adaptive;
 pub mod auto;
