@@ -57,8 +57,8 @@ pub enum FactorPrecision {
     Double,
 }
 
-/// Smallest factor (flops of the plain analysis, in the measure of
-/// [`super::flops`]) that [`FactorPrecision::Auto`] makes mixed: between
+/// Smallest factor (flops of the plain analysis, Σ c² over the columns as
+/// in [`super::CholeskyFactor::factor_flops`]) that [`FactorPrecision::Auto`] makes mixed: between
 /// camelhead's and armadillo_cut_low's 1.5–2.2e8, where f32 gains 15 % per
 /// factorisation and a breakdown costs two, and hand.mesh's 1.0e9, where it
 /// gains 40 % (module docs).
