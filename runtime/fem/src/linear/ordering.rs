@@ -21,6 +21,8 @@
 //!   graph from the vertices' positions ([`ecc_mesh::dissection`], the
 //!   ordering of the Tutte solve); needs [`Coordinates`] (e.g.
 //!   `NewtonSolver::with_geometry`), asking for it without is a clear error.
+//!   [`FillOrdering::Auto`] takes it instead of METIS where the positions are
+//!   known and the mesh is flat enough ([`GEOMETRIC_MAX_RATIO`]).
 //!
 //! All orderings produce `perm` with `perm[new] = old` (faer's and METIS's
 //! convention: the factored matrix is A(perm, perm)).
@@ -28,6 +30,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::simplicial;
 use serde::{Deserialize, Serialize};
 
 use crate::error::FemError;
@@ -51,8 +54,10 @@ pub enum FillOrdering {
     /// positions (needs [`Coordinates`]).
     Geometric,
     /// By size ([`FillOrdering::auto_choice`]): METIS for 2D systems of at
-    /// least [`METIS_MIN_UNKNOWNS`] unknowns when compiled in, block AMD
-    /// otherwise.
+    /// least [`METIS_MIN_UNKNOWNS`] unknowns when compiled in — or there the
+    /// geometric dissection when positions are known and its factor costs
+    /// at most [`GEOMETRIC_MAX_RATIO`] × block AMD's (a flat mesh) —, block
+    /// AMD otherwise.
     Auto,
 }
 
@@ -307,6 +312,12 @@ pub(crate) fn permutation(
         FillOrdering::Auto => FillOrdering::auto_choice(pattern.n(), sv.len()),
         o => o,
     };
+    if ordering == FillOrdering::Auto
+        && used == FillOrdering::Metis
+        && let Some(gperm) = flat_geometric(&sv, pattern.n(), coords, GEOMETRIC_MAX_RATIO)?
+    {
+        return Ok((Some(sv.expand(&gperm)), FillOrdering::Geometric));
+    }
     let perm = match used {
         FillOrdering::Metis => metis_permutation(&sv)?,
         FillOrdering::Geometric => geometric_permutation(&sv, pattern.n(), coords)?,
@@ -343,12 +354,85 @@ fn geometric_permutation(
     let coords = coords
         .filter(|c| c.len() == n)
         .ok_or_else(missing_positions)?;
+    Ok(sv.expand(&geometric_groups(sv, coords)))
+}
+
+/// The group permutation of [`geometric_permutation`].
+fn geometric_groups(sv: &Supervariables, coords: &[[f64; 3]]) -> Vec<usize> {
     let pos: Vec<[f64; 3]> = sv.start[..sv.len()].iter().map(|&u| coords[u]).collect();
     let graph = ecc_mesh::dissection::Graph {
         ptr: &sv.adj_ptr,
         idx: &sv.adj,
     };
-    Ok(sv.expand(&ecc_mesh::dissection::nested_dissection(graph, &pos)))
+    ecc_mesh::dissection::nested_dissection(graph, &pos)
+}
+
+/// Largest ratio of the geometric dissection's factor cost to block AMD's
+/// (both on the vertex graph, `group_flops`) at which
+/// [`FillOrdering::Auto`] takes the geometric ordering where it would
+/// otherwise run METIS (2D, ≥ [`METIS_MIN_UNKNOWNS`], positions known).
+/// Measured (ordering.md, stop 26): the 1M-triangle bumpy disk 0.81, where
+/// geometric ran the whole parameterisation in 21.9–22.3 s against METIS's
+/// 23.3–24.1 s (three paired rounds: ordering 0.2 s against 3.3–4 s of
+/// setup, factorisations +12 %); flat square grids 1.07 / 1.03 / 0.99 at
+/// 3.7k / 15k / 40k vertices (the ratio falls with size); curved surfaces
+/// and tets 1.67 (camelhead), 2.14 (hand.mesh), 2.6 (a grid rolled three
+/// times round an axis), 6.9 (armadillo_cut_low): a plane cuts them many
+/// times. Block AMD's factor was within 1.9× METIS's on every mesh measured,
+/// so an accepted geometric ordering costs at most ≈ 1.6× METIS's flops,
+/// and 1.15× on the disk.
+pub const GEOMETRIC_MAX_RATIO: f64 = 0.85;
+
+/// The geometric dissection's group permutation when the unknowns have
+/// positions and its factor costs at most `max_ratio` × block AMD's
+/// ([`GEOMETRIC_MAX_RATIO`]), else `None`.
+fn flat_geometric(
+    sv: &Supervariables,
+    n: usize,
+    coords: Option<&[[f64; 3]]>,
+    max_ratio: f64,
+) -> Result<Option<Vec<usize>>, FemError> {
+    let Some(coords) = coords.filter(|c| c.len() == n) else {
+        return Ok(None);
+    };
+    let (geometric, amd) = rayon::join(
+        || geometric_groups(sv, coords),
+        || {
+            let (cp, ri) = sv.upper();
+            amd_order(sv.len(), &cp, &ri)
+        },
+    );
+    let ratio = group_flops(sv, &geometric)? / group_flops(sv, &amd?)?;
+    Ok((ratio <= max_ratio).then_some(geometric))
+}
+
+/// Σ c² over the columns c of the Cholesky factor of the group graph
+/// (diagonal included) in the order `gperm` (`gperm[new] = old`): the
+/// flops measure of the factor with one unknown per group, from faer's
+/// elimination tree and column counts (no symbolic factorisation).
+fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
+    let ng = sv.len();
+    let mut inv = vec![0usize; ng];
+    gperm.iter().enumerate().for_each(|(new, &g)| inv[g] = new);
+    let mut cp = Vec::with_capacity(ng + 1);
+    cp.push(0);
+    let mut ri = Vec::with_capacity(sv.adj.len() / 2 + ng);
+    for (j, &g) in gperm.iter().enumerate() {
+        let start = ri.len();
+        let nb = &sv.adj[sv.adj_ptr[g]..sv.adj_ptr[g + 1]];
+        ri.extend(nb.iter().map(|&h| inv[h]).filter(|&i| i < j));
+        ri.push(j);
+        ri[start..].sort_unstable();
+        cp.push(ri.len());
+    }
+    let a = SymbolicSparseColMatRef::new_checked(ng, ng, &cp, None, &ri);
+    let mut etree = vec![0isize; ng];
+    let mut counts = vec![0usize; ng];
+    let req = simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(ng, ri.len());
+    let mut mem = MemBuffer::try_new(req)
+        .map_err(|_| FemError::Symbolic("out of memory for the column counts".into()))?;
+    simplicial::prefactorize_symbolic_cholesky(&mut etree, &mut counts, a, MemStack::new(&mut mem));
+    Ok(counts.iter().map(|&c| (c as f64).powi(2)).sum())
 }
 
 #[cfg(feature = "metis")]
@@ -561,6 +645,79 @@ pub(crate) mod tests {
                 }
             }
         });
+    }
+
+    /// Σ c² of the factor of a path graph in its natural order: every
+    /// column but the last has two entries (itself and its successor).
+    #[test]
+    fn group_flops_counts_the_factor_columns() {
+        let n: usize = 9;
+        let lists: Vec<Vec<usize>> = (0..n)
+            .map(|v| {
+                [v.wrapping_sub(1), v + 1]
+                    .into_iter()
+                    .filter(|&u| u < n)
+                    .collect()
+            })
+            .collect();
+        let mut adj_ptr = vec![0];
+        lists
+            .iter()
+            .for_each(|l| adj_ptr.push(adj_ptr.last().unwrap() + l.len()));
+        let sv = Supervariables {
+            start: (0..=n).collect(),
+            adj_ptr,
+            adj: lists.concat(),
+        };
+        let natural: Vec<usize> = (0..n).collect();
+        assert_eq!(
+            group_flops(&sv, &natural).unwrap(),
+            (4 * (n - 1) + 1) as f64
+        );
+        // the middle vertex first: its two neighbours fill in, one column of 3
+        let mut mid_first = natural.clone();
+        mid_first.swap(0, n / 2);
+        assert!(group_flops(&sv, &mid_first).unwrap() > (4 * (n - 1) + 1) as f64);
+    }
+
+    /// The grid's vertices rolled three times round the z axis (a spiral
+    /// sheet): the same graph as [`grid_coords`]'s flat one, curved in 3D.
+    fn rolled_coords(nx: usize, ny: usize, dim: usize) -> Vec<[f64; 3]> {
+        grid_coords(nx, ny, dim)
+            .into_iter()
+            .map(|[x, y, _]| {
+                let t = 3.0 * std::f64::consts::TAU * x / nx as f64;
+                let r = 5.0 + x / 12.0;
+                [r * t.cos(), r * t.sin(), y]
+            })
+            .collect()
+    }
+
+    /// The geometric dissection is taken when its vertex-graph factor is
+    /// cheap enough against block AMD's: the flat grid (ratio ≈ 1.03 at
+    /// this size) passes a bound of 1.5 and the rolled one (≈ 2.6) does
+    /// not; without positions there is nothing to dissect.
+    #[test]
+    fn the_geometric_ordering_is_taken_only_where_flat() {
+        let (nx, dim) = (120, 2);
+        let p = grid(nx, nx, dim);
+        let sv = Supervariables::of(&p);
+        let n = p.n();
+        let flat = grid_coords(nx, nx, dim);
+        let got = flat_geometric(&sv, n, Some(&flat), 1.5).unwrap().unwrap();
+        assert_eq!(got, geometric_groups(&sv, &flat));
+        assert!(flat_geometric(&sv, n, Some(&flat), 0.9).unwrap().is_none());
+        let rolled = rolled_coords(nx, nx, dim);
+        assert!(
+            flat_geometric(&sv, n, Some(&rolled), 1.5)
+                .unwrap()
+                .is_none()
+        );
+        assert!(
+            flat_geometric(&sv, n, None, f64::INFINITY)
+                .unwrap()
+                .is_none()
+        );
     }
 
     #[cfg(not(feature = "metis"))]
