@@ -73,7 +73,7 @@ pub fn filter_value<R: Real>(filter: Filter, l: R) -> R {
     }
 }
 
-/// The chain-rule weights of an element: w[n][c] = ∂F_rc/∂x_{n,r}
+/// The chain-rule weights of an element: w\[n\]\[c\] = ∂F_rc/∂x_{n,r}
 /// (w_n = row n−1 of Dm⁻¹ for n ≥ 1, w_0 = −Σ w_n).
 pub fn chain_weights<R: Real>(dm_inv: &[f64], d: usize) -> Vec<Vec<R>> {
     let mut w: Vec<Vec<R>> = vec![vec![R::zero(); d]; d + 1];

@@ -11,7 +11,7 @@
 //!
 //! Modules: [`real`] / [`dd`] (number types, from `ecc-tests`), [`graph_eval`] (the CAS graph in
 //! any precision), [`linalg`] (Jacobi eigen / signed SVD in any precision),
-//! [`generic_kernel`] (the f32/f64 element kernel), [`reference`] (the
+//! [`generic_kernel`] (the f32/f64 element kernel), [`reference`](mod@reference) (the
 //! double-double reference), [`cases`] (hard F), [`energies`] (the energy set),
 //! [`element`] (per-element timing and accuracy), [`solve`] (convergence
 //! runs), [`scaling`] (time per Newton iteration vs size), [`report`]

@@ -142,7 +142,7 @@ fn entry(line: &str, no: usize, n: usize) -> Result<(usize, usize, f64), MtxErro
     Ok((c, r, v))
 }
 
-/// Read a file written by [`write`] (any order of the lower-triangle
+/// Read a file written by [`write`](fn@write) (any order of the lower-triangle
 /// entries; duplicates, entries above the diagonal and a missing diagonal
 /// are errors).
 pub fn read(input: impl BufRead) -> Result<UpperCsc, MtxError> {

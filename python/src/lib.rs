@@ -15,7 +15,7 @@
 //!
 //! Solves run with the GIL released; the progress callback and Ctrl-C are
 //! serviced between Newton iterations. Errors are raised as `ecc.Error`
-//! subclasses (see [`errors`]); arrays are validated before any solve, so bad
+//! subclasses (see `errors`); arrays are validated before any solve, so bad
 //! input raises and never crashes the interpreter.
 
 use pyo3::prelude::*;

@@ -4,7 +4,7 @@
 //!   flushed, synced, renamed over the destination), so a reader never sees a
 //!   partial file and a failed write leaves any old file untouched. Used by
 //!   the mesh writers, the scene's output folder and the CLI's `-o`.
-//! * [`suggest`]: "did you mean …?" — the closest known name by edit
+//! * [`suggest`](mod@suggest): "did you mean …?" — the closest known name by edit
 //!   distance, with one documented threshold, for the `.psi` front end, scene
 //!   keys and values, and energy names.
 //! * [`simd`]: `vzeroupper` after runtime-dispatched AVX code (faer's

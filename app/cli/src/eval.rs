@@ -36,7 +36,7 @@ pub struct EvalArgs {
     /// Print one JSON object (the documented contract) instead of a table.
     #[arg(long)]
     pub json: bool,
-    /// The fibre direction "ax ay [az]" of an energy with `fiber a`
+    /// The fibre direction "ax ay \[az\]" of an energy with `fiber a`
     /// (normalised); adds the `fibre` object (I4, I5, ψ, eigenvalues).
     #[arg(
         long = "fiber",

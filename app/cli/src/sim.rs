@@ -32,7 +32,7 @@ use crate::progress::Progress;
 pub struct SimArgs {
     /// The scene file (TOML). Without one, runs the built-in demo scene.
     pub scene: Option<PathBuf>,
-    /// Output folder (default: the scene's `output.dir`, else ./ecc-out/<scene name>).
+    /// Output folder (default: the scene's `output.dir`, else `./ecc-out/<scene name>`).
     #[arg(long, short = 'o', value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// Override the number of frames (e.g. a quick preview).

@@ -12,7 +12,7 @@
 //!   cotangent-like Laplacian of the rest mesh, one copy per coordinate) —
 //!   the quadratic proxy of AQP (Kovalsky et al. 2016) and of the ARAP
 //!   local-global global step (Liu et al. 2008), with the same line search
-//!   as Newton. With `B = ∂vec(F)/∂x`, (BᵀB)_{(n,r),(m,s)} = δ_rs Σ_c w_n[c] w_m[c]
+//!   as Newton. With `B = ∂vec(F)/∂x`, (BᵀB)_{(n,r),(m,s)} = δ_rs Σ_c w_n\[c\] w_m\[c\]
 //!   where w_n is row n−1 of Dm⁻¹ (w_0 = −Σ w_n).
 
 use ecc_fem::{Filter, Term};

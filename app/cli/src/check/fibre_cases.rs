@@ -23,7 +23,7 @@ use rand_chacha::ChaCha8Rng;
 
 /// One fibre point to check.
 pub struct FibreCase<const D: usize> {
-    /// Row label in the report: "<case>, <direction>".
+    /// Row label in the report: `"<case>, <direction>"`.
     pub name: String,
     /// The deformation gradient.
     pub f: SMatrix<f64, D, D>,

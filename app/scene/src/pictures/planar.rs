@@ -249,7 +249,7 @@ pub fn planar(
 
 /// [`planar`] with each triangle's deformed fibre direction F a drawn in
 /// the main panel, coloured by stretch √I5, with the legend of the volume
-/// pictures (see [`fibres`]) above the body.
+/// pictures (see `fibres`) above the body.
 pub fn planar_fibres(
     tris: &[[usize; 3]],
     shots: &[(usize, Vec<[f64; 2]>)],

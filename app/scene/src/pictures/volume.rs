@@ -247,7 +247,7 @@ pub fn volume(tets: &[[usize; 4]], shots: &[(usize, Vec<[f64; 3]>)], view: &View
 }
 
 /// [`volume`] with each element's deformed fibre direction drawn in the
-/// main panel, coloured by stretch, with a legend (see [`fibres`]).
+/// main panel, coloured by stretch, with a legend (see `fibres`).
 pub fn volume_fibres(
     tets: &[[usize; 4]],
     shots: &[(usize, Vec<[f64; 3]>)],

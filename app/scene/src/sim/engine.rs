@@ -10,7 +10,7 @@
 //!   infinite (an element of a barrier energy inverted by the handle jump)
 //!   is halved until it is feasible (down to 1/1024 of a substep): the
 //!   library's handle deformation, [`ecc_fem::deform::move_handles`], driven
-//!   by [`super::handle_move::FrameMove`];
+//!   by `super::handle_move::FrameMove`;
 //! * **dynamic**: `steps_per_frame` time steps (see [`crate::dynamics`]),
 //!   each started from the inertial prediction x̃ (or from x_n when x̃ is
 //!   infeasible), with the Rayleigh stiffness snapshot taken at x_n.
@@ -38,7 +38,7 @@ use crate::terms::{Gravity, Ground, MassMatrix, MassQuadratic, StiffnessDamping}
 pub struct Slots {
     /// The elastic term, or the interpolation blend.
     pub elastic: usize,
-    /// Whether `elastic` is a [`Blend`].
+    /// Whether `elastic` is a `Blend`.
     pub blend: bool,
     /// Gravity.
     pub gravity: Option<usize>,

@@ -1,5 +1,5 @@
-//! Running scenes: the orchestration ([`run`]), the shared context and
-//! report ([`context`]), the frame loop, parameterisation, frame writers,
+//! Running scenes: the orchestration (`run`), the shared context and
+//! report (`context`), the frame loop, parameterisation, frame writers,
 //! progress reporting.
 
 pub mod build;

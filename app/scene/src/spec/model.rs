@@ -455,9 +455,9 @@ pub struct SolverSpec {
     pub precision: Option<ecc_fem::linear::cholesky::FactorPrecision>,
     /// Fill-reducing ordering of the Cholesky factor: `auto` (default:
     /// `metis` for 2D systems of at least 500k unknowns, or there
-    /// `geometric` on flat meshes, `block-amd` otherwise), `block-amd`, `amd`, `metis` or `geometric` (nested
-    /// dissection from the rest positions: cheap to compute, good on flat
-    /// meshes only); the run summary reports the one used
+    /// `geometric` on flat meshes, `block-amd` otherwise), `block-amd`,
+    /// `amd`, `metis` or `geometric` (nested dissection from the rest
+    /// positions: cheap to compute, good on flat meshes only); the run summary reports the one used
     /// (`ecc_fem::linear::ordering::FillOrdering`; docs/benchmarks/ordering.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ordering: Option<ecc_fem::linear::ordering::FillOrdering>,

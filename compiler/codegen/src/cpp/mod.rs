@@ -1,10 +1,10 @@
 //! # The C++ back end: one self-contained C++17 header per energy
 //!
-//! Printed from the *same* plan as the Rust back end ([`crate::plan::Plan`]:
+//! Printed from the *same* plan as the Rust back end (`crate::plan::Plan`:
 //! folded constants, shared subexpressions with readable names, lazily
 //! evaluated guarded branches), so both languages compute the same
 //! expressions in the same order. Only the syntax differs:
-//! [`expr`] prints the plan's expressions, [`energy`] the struct.
+//! `expr` prints the plan's expressions, `energy` the struct.
 //!
 //! The emitted header defines, in `namespace ecc::energies`, one struct whose
 //! public `double` members are the parameters (with the file's defaults) and
@@ -18,7 +18,7 @@
 //! * `eval(F, filter)` → `ecc::PointEval<D>`: Ψ, vec(∂Ψ/∂F) and the filtered
 //!   d²×d² Hessian; `eval_tri(x, Dm⁻¹, area, filter)` (2D, 6×6) or
 //!   `eval_tet(x, Dm⁻¹, volume, filter)` (3D, 12×12): the element versions;
-//! * for an energy with `fiber a`, the fibre part ψ(I4, I5) ([`fibre`]):
+//! * for an energy with `fiber a`, the fibre part ψ(I4, I5) (`fibre`):
 //!   `fibre<D>(i4, i5)` → `ecc::FibreDerivs`, `fibre_eval(F, a, filter)` →
 //!   `ecc::FibreEval<D>` (ψ, I4, I5, vec(∂ψ/∂F), filtered d²×d² Hessian),
 //!   `fibre_eval_tri` / `fibre_eval_tet` and `fibre_psi_f`. As in Rust the

@@ -22,7 +22,7 @@ pub const MAX_TERMS: usize = 6000;
 /// Largest coefficient (numerator + denominator bits) any polynomial may have.
 pub const MAX_COEFF_BITS: u64 = 1024;
 
-/// The polynomial exceeded [`MAX_TERMS`] or [`MAX_COEFF_BITS`], or the work
+/// The polynomial exceeded [`MAX_TERMS`] or `MAX_COEFF_BITS`, or the work
 /// budget ran out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TooBig;
@@ -190,7 +190,7 @@ impl Poly {
     /// Charged and bounded exactly like `self.add(&other.mul_mono(shift))`:
     /// `other.len()` operations, then [`TooBig`] when the sum has more than
     /// [`MAX_TERMS`] terms or a coefficient it changed exceeds
-    /// [`MAX_COEFF_BITS`] (the others were checked when they were made).
+    /// `MAX_COEFF_BITS` (the others were checked when they were made).
     /// After an error `self` is partly updated and must be discarded.
     pub fn add_shifted(&mut self, other: &Poly, shift: &Mono) -> Result<(), TooBig> {
         charge(other.terms.len() as u64)?;

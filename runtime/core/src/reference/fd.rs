@@ -216,7 +216,7 @@ where
 
 /// ∂²Ψ/∂f² (d²×d², column-major vec) by second central differences of Ψ(F);
 /// near a domain edge at det F = 0 of a non-barrier energy, by first
-/// differences of the analytic gradient instead (see [`near_a_soft_domain_edge`]).
+/// differences of the analytic gradient instead (see `near_a_soft_domain_edge`).
 pub fn fd_hessian_f<E: Energy<D> + ?Sized, const D: usize>(e: &E, f: &SMatrix<f64, D, D>) -> FMat<D>
 where
     Space<D>: Dim<D>,

@@ -133,7 +133,9 @@ impl FillOrdering {
     /// What [`FillOrdering::Auto`] uses for `n` unknowns in `groups`
     /// vertex groups (supervariables): METIS when it is compiled in, the
     /// system is 2D (fewer than 2.5 unknowns per group) and
-    /// n ≥ [`METIS_MIN_UNKNOWNS`]; block AMD otherwise.
+    /// n ≥ [`METIS_MIN_UNKNOWNS`]; block AMD otherwise. Where this says
+    /// METIS and the unknowns have positions, `Auto` takes the geometric
+    /// dissection instead on a flat mesh ([`GEOMETRIC_MAX_RATIO`]).
     pub fn auto_choice(n: usize, groups: usize) -> FillOrdering {
         let two_d = 2 * n < 5 * groups;
         if FillOrdering::Metis.is_available() && two_d && n >= METIS_MIN_UNKNOWNS {
