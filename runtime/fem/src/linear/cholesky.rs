@@ -134,12 +134,12 @@ fn split_for(
     params: CholeskyParams,
     symbolic: &SymbolicCholesky<usize>,
 ) -> Result<Option<Split>, FemError> {
-    let wanted = params.threads == ThreadPolicy::Split
+    let eligible = params.threads == ThreadPolicy::Split
         && rayon::current_num_threads() >= 2
-        && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
-        && flops(symbolic) >= SPLIT_MIN_FLOPS;
-    if wanted {
-        Split::analyse(pattern, symbolic, params.precision, flops(symbolic))
+        && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
+    let plain = if eligible { flops(symbolic) } else { 0.0 };
+    if eligible && plain >= SPLIT_MIN_FLOPS {
+        Split::analyse(pattern, symbolic, params.precision, plain)
     } else {
         Ok(None)
     }

@@ -264,23 +264,32 @@ impl Supervariables {
             .collect()
     }
 
-    /// Upper-triangular pattern (with diagonal) of the group graph, CSC.
-    fn upper(&self) -> (Vec<usize>, Vec<usize>) {
-        let mut cp = vec![0usize];
-        let mut ri = Vec::new();
-        for g in 0..self.len() {
+    /// Upper-triangular pattern (with diagonal, rows sorted) of the group
+    /// graph in the order `gperm` (`gperm[new] = old group`), CSC.
+    fn upper(&self, gperm: &[usize]) -> (Vec<usize>, Vec<usize>) {
+        let mut inv = vec![0usize; self.len()];
+        gperm.iter().enumerate().for_each(|(new, &g)| inv[g] = new);
+        let mut cp = Vec::with_capacity(self.len() + 1);
+        cp.push(0);
+        let mut ri = Vec::with_capacity(self.adj.len() / 2 + self.len());
+        for (j, &g) in gperm.iter().enumerate() {
+            let start = ri.len();
             let nb = &self.adj[self.adj_ptr[g]..self.adj_ptr[g + 1]];
-            ri.extend(nb.iter().copied().filter(|&h| h < g));
-            ri.push(g);
+            ri.extend(nb.iter().map(|&h| inv[h]).filter(|&i| i < j));
+            ri.push(j);
+            ri[start..].sort_unstable();
             cp.push(ri.len());
         }
         (cp, ri)
     }
 }
 
-/// faer's AMD on the upper-triangular CSC pattern `(cp, ri)` of size `n`.
-fn amd_order(n: usize, cp: &[usize], ri: &[usize]) -> Result<Vec<usize>, FemError> {
-    let a = SymbolicSparseColMatRef::new_checked(n, n, cp, None, ri);
+/// faer's AMD on the group graph: the group permutation of
+/// [`FillOrdering::BlockAmd`].
+fn amd_order(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
+    let n = sv.len();
+    let (cp, ri) = sv.upper(&(0..n).collect::<Vec<_>>());
+    let a = SymbolicSparseColMatRef::new_checked(n, n, &cp, None, &ri);
     let mut perm = vec![0usize; n];
     let mut inv = vec![0usize; n];
     let mut mem = MemBuffer::try_new(amd::order_scratch::<usize>(n, ri.len()))
@@ -323,10 +332,7 @@ pub(crate) fn permutation(
     let perm = match used {
         FillOrdering::Metis => metis_permutation(&sv)?,
         FillOrdering::Geometric => geometric_permutation(&sv, pattern.n(), coords)?,
-        _ => {
-            let (cp, ri) = sv.upper();
-            sv.expand(&amd_order(sv.len(), &cp, &ri)?)
-        }
+        _ => sv.expand(&amd_order(&sv)?),
     };
     Ok((Some(perm), used))
 }
@@ -397,13 +403,7 @@ fn flat_geometric(
     let Some(coords) = coords.filter(|c| c.len() == n) else {
         return Ok(None);
     };
-    let (geometric, amd) = rayon::join(
-        || geometric_groups(sv, coords),
-        || {
-            let (cp, ri) = sv.upper();
-            amd_order(sv.len(), &cp, &ri)
-        },
-    );
+    let (geometric, amd) = rayon::join(|| geometric_groups(sv, coords), || amd_order(sv));
     let ratio = group_flops(sv, &geometric)? / group_flops(sv, &amd?)?;
     Ok((ratio <= max_ratio).then_some(geometric))
 }
@@ -414,19 +414,7 @@ fn flat_geometric(
 /// elimination tree and column counts (no symbolic factorisation).
 fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
     let ng = sv.len();
-    let mut inv = vec![0usize; ng];
-    gperm.iter().enumerate().for_each(|(new, &g)| inv[g] = new);
-    let mut cp = Vec::with_capacity(ng + 1);
-    cp.push(0);
-    let mut ri = Vec::with_capacity(sv.adj.len() / 2 + ng);
-    for (j, &g) in gperm.iter().enumerate() {
-        let start = ri.len();
-        let nb = &sv.adj[sv.adj_ptr[g]..sv.adj_ptr[g + 1]];
-        ri.extend(nb.iter().map(|&h| inv[h]).filter(|&i| i < j));
-        ri.push(j);
-        ri[start..].sort_unstable();
-        cp.push(ri.len());
-    }
+    let (cp, ri) = sv.upper(gperm);
     let a = SymbolicSparseColMatRef::new_checked(ng, ng, &cp, None, &ri);
     let mut etree = vec![0isize; ng];
     let mut counts = vec![0usize; ng];

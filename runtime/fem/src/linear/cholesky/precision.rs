@@ -59,9 +59,10 @@ pub enum FactorPrecision {
 
 /// Smallest factor (flops of the plain analysis, Σ c² over the columns as
 /// in [`super::CholeskyFactor::factor_flops`]) that
-/// [`FactorPrecision::Auto`] makes mixed: between camelhead's and armadillo_cut_low's 1.5–2.2e8, where f32 gains 15 % per
-/// factorisation and a breakdown costs two, and hand.mesh's 1.0e9, where it
-/// gains 40 % (module docs).
+/// [`FactorPrecision::Auto`] makes mixed: between camelhead's and
+/// armadillo_cut_low's 1.5–2.2e8, where f32 gains 15 % per factorisation
+/// and a breakdown costs two, and hand.mesh's 1.0e9, where it gains 40 %
+/// (module docs).
 pub const MIXED_MIN_FLOPS: f64 = 5e8;
 
 impl FactorPrecision {
