@@ -1,5 +1,6 @@
 //! `[solver] factor_reuse`: reuse of a Cholesky factor as the CG
-//! preconditioner (`ecc_fem::linear::FactorReuse`), off unless asked for.
+//! preconditioner (`ecc_fem::linear::FactorReuse`): the library's default
+//! policy unless the key says otherwise.
 
 use ecc_fem::linear::FactorReuse;
 use ecc_scene::SceneFile;
@@ -15,8 +16,9 @@ fn reuse_of(solver: &str) -> Result<FactorReuse, String> {
 }
 
 #[test]
-fn factor_reuse_is_off_by_default_and_opt_in() {
-    assert_eq!(reuse_of("").unwrap(), FactorReuse::OFF);
+fn factor_reuse_is_the_default_policy_unless_set() {
+    assert_eq!(reuse_of("").unwrap(), FactorReuse::ONE_STEP);
+    assert_eq!(reuse_of("").unwrap(), FactorReuse::default());
     assert_eq!(reuse_of("factor_reuse = false").unwrap(), FactorReuse::OFF);
     assert_eq!(
         reuse_of("factor_reuse = true").unwrap(),

@@ -49,6 +49,7 @@ fn reuse(spec: &str) -> Result<FactorReuse, String> {
         max_cg_iters: num(0).ok_or_else(bad)?? as usize,
         rel_tol: num(1).ok_or_else(bad)??,
         max_work_fraction: num(2).unwrap_or(Ok(default.max_work_fraction))?,
+        max_age: num(3).map_or(Ok(usize::MAX), |a| a.map(|a| a as usize))?,
     })
 }
 

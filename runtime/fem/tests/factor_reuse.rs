@@ -119,6 +119,41 @@ fn the_stale_factor_saves_factorisations_and_finds_the_same_minimiser() {
     );
 }
 
+/// `max_age` = 1 (the default's limit): a factor serves at most the step
+/// after the one that made it, so reused steps never follow each other and
+/// each follows a factorisation; without the limit this problem reuses one
+/// factor for consecutive steps, so the limit is what the test sees.
+#[test]
+fn one_stale_step_per_factor() {
+    let consecutive = |r: &NewtonResult| {
+        r.records
+            .windows(2)
+            .any(|w| w[0].reused_factor && w[1].reused_factor)
+    };
+    let (unlimited, _) = squeezed(any_cost(), 1e-8);
+    assert!(
+        consecutive(&unlimited),
+        "the unlimited policy reuses twice in a row"
+    );
+    let once = FactorReuse {
+        max_age: 1,
+        ..any_cost()
+    };
+    let (r, err) = squeezed(once, 1e-8);
+    assert!(r.converged(), "{:?}", r.status);
+    assert!(err < 1e-6, "{err}");
+    assert!(reused_steps(&r) > 0);
+    assert!(r.numeric_factorizations < r.iterations);
+    assert!(!consecutive(&r));
+    for w in r.records.windows(2).filter(|w| w[1].reused_factor) {
+        assert!(
+            w[0].factorizations >= 1,
+            "a reused step follows a factorisation"
+        );
+    }
+    assert!(!r.records[0].reused_factor);
+}
+
 /// A budget the stale factor can never meet: every attempt falls back to a
 /// factorisation of the same matrix, so the iterates are those without reuse.
 #[test]
@@ -128,6 +163,7 @@ fn a_failed_reuse_attempt_refactorises() {
         max_cg_iters: ecc_fem::linear::reuse::MIN_BUDGET,
         rel_tol: f64::MIN_POSITIVE,
         max_work_fraction: f64::INFINITY,
+        max_age: usize::MAX,
     };
     let (forced, err) = squeezed(hopeless, 1e-8);
     assert!(forced.converged(), "{:?}", forced.status);

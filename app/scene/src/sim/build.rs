@@ -93,10 +93,10 @@ pub fn newton_params(s: &SolverSpec, scale: f64) -> NewtonParams {
             LinearKind::Cholesky => LinearSolver::Cholesky,
             LinearKind::Pcg => LinearSolver::Pcg,
         },
-        factor_reuse: if s.factor_reuse.unwrap_or(false) {
-            ecc_fem::linear::FactorReuse::STALE_CG
-        } else {
-            ecc_fem::linear::FactorReuse::OFF
+        factor_reuse: match s.factor_reuse {
+            None => ecc_fem::linear::FactorReuse::default(),
+            Some(true) => ecc_fem::linear::FactorReuse::STALE_CG,
+            Some(false) => ecc_fem::linear::FactorReuse::OFF,
         },
         extrapolate: s.extrapolate.unwrap_or(false),
         energy_scale: scale,

@@ -422,11 +422,13 @@ pub struct SolverSpec {
     /// `auto` (default), `cholesky` or `pcg`.
     #[serde(default)]
     pub linear: LinearKind,
-    /// Reuse the last Cholesky factor as the preconditioner of CG on the
-    /// following Newton steps of a solve, refactorising when CG does not
-    /// converge in a few iterations (`ecc_fem::linear::FactorReuse::STALE_CG`);
-    /// default false (docs/benchmarks/reuse.md: it paid on 3D handle solves,
-    /// not on 2D parameterisations).
+    /// Reuse of a Cholesky factor as the preconditioner of CG on later
+    /// Newton steps of a solve. Unset: the default policy
+    /// (`ecc_fem::linear::FactorReuse::ONE_STEP`: one stale step per
+    /// factor, at most 3 CG iterations, only where a factorisation is
+    /// dear); `true`: the older `FactorReuse::STALE_CG` (no age limit,
+    /// residual ≤ 1e-2); `false`: a factorisation every step
+    /// (docs/benchmarks/reuse.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub factor_reuse: Option<bool>,
     /// After a full Newton step with no inversion-free bound, try once the

@@ -49,16 +49,26 @@
 //! needed at least 3 iterations in every measured step, so a smaller
 //! budget only wastes work).
 //!
-//! **Default: off, by measurement** (docs/benchmarks/reuse.md). On this
-//! machine a stale-factor CG iteration costs 1/5–1/8 of a factorisation
-//! on every mesh measured (faer's triangular solves run at ≈ 1 GFlop/s,
-//! its supernodal factorisation at 3–10), and a reused step needs 5–10
-//! iterations on the SD parameterisations, so reuse made camelhead,
-//! armadillo_cut_low and the 135k/1M-triangle disks slower (1M: 142 s
-//! against 101 s). It paid on the 3D hand.mesh ARAP/SNH solves (4–8
-//! iterations per reused step, 0.49 s against 0.74 s and 1.0 s against
-//! 1.7 s, unpaired runs on a loaded machine). [`FactorReuse::STALE_CG`] is
-//! the measured opt-in setting.
+//! **Default: one stale step per factor, where a factor is dear**
+//! ([`FactorReuse::ONE_STEP`], docs/benchmarks/reuse.md, "One stale step
+//! per factor"). On this machine a stale-factor CG iteration costs 1/5–1/8
+//! of a factorisation, and a reused step of the SD parameterisations needs
+//! 2–3 iterations to reach the forcing term (≤ 0.1) when the factor is one
+//! step old, and fails (3 iterations wasted) when it is two steps old: the
+//! projected Hessian moves too much per step. So the default tries the
+//! stale factor for at most one step after the step that made it
+//! (`max_age` = 1), with at most 3 iterations, and only where one
+//! factorisation is worth ≥ 5 CG iterations by the work estimate (4)
+//! (θ = 0.6). Measured end to end (`ecc sim`, scene defaults, same
+//! session): the 1M-triangle disk 8 iterations with 5 factorisations
+//! instead of 8, the 135k-triangle disk 7 with 4 (1.56 s against 1.94 s of
+//! Newton time); the hand.mesh handle scenes within noise with 40 % fewer
+//! factorisations. camelhead, armadillo_cut_low and hand_1_i_f5000 (a
+//! factorisation worth 3.1, 1.5 and 0.9 CG iterations) stay below the
+//! threshold: tried there, reuse made them 1.2–1.5× slower.
+//! [`FactorReuse::OFF`] factorises every step; [`FactorReuse::STALE_CG`]
+//! (no age limit, residual ≤ 1e-2) is the older opt-in policy that paid on
+//! 3D handle solves.
 
 use serde::{Deserialize, Serialize};
 
@@ -76,6 +86,15 @@ pub struct FactorReuse {
     /// θ of eq. (4): the CG work a reused step may spend, as a fraction of
     /// one factorisation's estimated work (∞: only `max_cg_iters` limits).
     pub max_work_fraction: f64,
+    /// Newton steps one numeric factor may serve after the step that made
+    /// it before the next step refactorises without trying it
+    /// (`usize::MAX`: no limit, only the residual test decides).
+    #[serde(default = "unlimited_age")]
+    pub max_age: usize,
+}
+
+fn unlimited_age() -> usize {
+    usize::MAX
 }
 
 /// Smallest useful budget (see the module docs).
@@ -88,13 +107,25 @@ impl FactorReuse {
         max_cg_iters: 10,
         rel_tol: 1e-2,
         max_work_fraction: 0.75,
+        max_age: usize::MAX,
     };
 
-    /// Never reuse: factorise at every Newton step (the default).
+    /// The default (module docs): the factor of one step serves at most
+    /// the next step, with at most 3 CG iterations, where one factorisation
+    /// is worth ≥ 5 of them (θ·W_f/W_it ≥ `MIN_BUDGET`).
+    pub const ONE_STEP: FactorReuse = FactorReuse {
+        max_cg_iters: 3,
+        rel_tol: 0.1,
+        max_work_fraction: 0.6,
+        max_age: 1,
+    };
+
+    /// Never reuse: factorise at every Newton step.
     pub const OFF: FactorReuse = FactorReuse {
         max_cg_iters: 0,
         rel_tol: 0.0,
         max_work_fraction: 0.0,
+        max_age: 0,
     };
 
     /// Whether reuse is enabled.
@@ -125,9 +156,9 @@ impl FactorReuse {
 }
 
 impl Default for FactorReuse {
-    /// [`FactorReuse::OFF`] (module docs: measured).
+    /// [`FactorReuse::ONE_STEP`] (module docs: measured).
     fn default() -> Self {
-        FactorReuse::OFF
+        FactorReuse::ONE_STEP
     }
 }
 
@@ -145,8 +176,26 @@ mod tests {
         // worth 3: θ·3 < MIN_BUDGET, no attempt
         assert_eq!(p.budget(3.0, 1.0), 0);
         assert_eq!(FactorReuse::OFF.budget(100.0, 1.0), 0);
-        assert_eq!(FactorReuse::default(), FactorReuse::OFF);
+        assert_eq!(FactorReuse::default(), FactorReuse::ONE_STEP);
         assert_eq!(p.target(0.5), 1e-2);
         assert_eq!(p.target(1e-4), 1e-4);
+    }
+
+    /// The default attempts 3 iterations exactly where a factorisation is
+    /// worth ≥ 5 of them: the 135k/1M disks and hand.mesh (6.3, 11.5, 6.0
+    /// by eq. (4)), not camelhead, armadillo_cut_low, hand_1_i_f5000 (3.1,
+    /// 1.5, 0.9).
+    #[test]
+    fn the_default_reuses_only_dear_factors_for_one_step() {
+        let p = FactorReuse::default();
+        for w in [0.9, 1.5, 3.1, 4.9] {
+            assert_eq!(p.budget(w, 1.0), 0, "{w}");
+        }
+        for w in [5.0, 6.0, 6.3, 11.5, 1e6] {
+            assert_eq!(p.budget(w, 1.0), 3, "{w}");
+        }
+        assert_eq!(p.max_age, 1);
+        assert_eq!(FactorReuse::STALE_CG.max_age, usize::MAX);
+        assert_eq!(FactorReuse::OFF.max_age, 0);
     }
 }

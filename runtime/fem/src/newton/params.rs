@@ -80,9 +80,11 @@ pub struct NewtonParams {
     /// (`linear::cholesky::ThreadPolicy`; default: block AMD, sequential).
     pub cholesky: CholeskyParams,
     /// With Cholesky: when a later step solves by CG preconditioned by the
-    /// last (stale) factor instead of factorising again
-    /// (default [`FactorReuse::OFF`], factorise every step, by measurement;
-    /// [`FactorReuse::STALE_CG`] opts in).
+    /// last (stale) factor instead of factorising again (default
+    /// [`FactorReuse::ONE_STEP`]: the step after a factorisation, with at
+    /// most 3 CG iterations, where a factorisation is worth ≥ 5 of them;
+    /// [`FactorReuse::OFF`] factorises every step; see
+    /// [`crate::linear::reuse`]).
     pub factor_reuse: FactorReuse,
     /// The solver minimises `energy_scale`·E; energies and gradients reported
     /// and tested are scaled too (1/Σ|q| gives the area-weighted mean).
