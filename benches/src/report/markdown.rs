@@ -474,9 +474,10 @@ fn solve_section(r: &Results, out: &mut String) {
         "## 2. Per solve\n\nProjected Newton (Armijo backtracking, inversion-free for barrier energies) from the same start with \
          each way of building the system. *ecc defaults* is what `ecc sim` runs: the default projection `auto` (F-space on parameterisations, \
          whose trust-region Newton policy ends in raw-Hessian steps, and on tets), `linear = \"auto\"` (Cholesky on all of these meshes), \
-         the split two-thread Cholesky with the `auto` ordering (block AMD at these sizes), and on parameterisations trust-region Newton; \
-         *ecc defaults, 1 thread* is the same in a one-thread pool. Every other row uses faer Cholesky on two threads (split), the fixed \
-         filter and F-space projection. Each run stops at ‖∇E‖∞ ≤ 1e-8, after {newton} iterations ({proxy} for the proxy) or after {limit:.0} s. \
+         the split two-thread Cholesky with the `auto` ordering (block AMD at these sizes), the default factor reuse (the step after a \
+         factorisation tries CG preconditioned by it where a factorisation is dear: hand.mesh here), and on parameterisations trust-region \
+         Newton; *ecc defaults, 1 thread* is the same in a one-thread pool. Every other row uses faer Cholesky on two threads (split), \
+         a factorisation at every Newton step (as TinyAD), the fixed filter and F-space projection. Each run stops at ‖∇E‖∞ ≤ 1e-8, after {newton} iterations ({proxy} for the proxy) or after {limit:.0} s. \
          Times are the solver's own per-iteration records (assembly + factorisation + solve + line search; setup excluded). \
          The proxy's constant Hessian is counted as factorised once. — : threshold not reached.\n"
     );

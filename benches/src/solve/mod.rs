@@ -38,6 +38,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use ecc_fem::elastic::Projection;
+use ecc_fem::linear::FactorReuse;
 use ecc_fem::param::ParamOptions;
 use ecc_fem::{
     Elastic, Filter, FilterPolicy, LinearSolver, NewtonParams, NewtonSolver, Term, Tet, Tri,
@@ -288,12 +289,17 @@ fn params(method: SolveMethod, limits: &SolveLimits, scale: f64) -> NewtonParams
     };
     match method {
         SolveMethod::Defaults | SolveMethod::DefaultsOneThread => {
-            p.linear_solver = NewtonParams::default().linear_solver
+            p.linear_solver = NewtonParams::default().linear_solver;
+            return p;
         }
         SolveMethod::Abs => p.filter = Filter::Abs,
         SolveMethod::Adaptive => p.filter_policy = FilterPolicy::TrustRegion,
         _ => {}
     }
+    // the alternatives factorise at every Newton step, as TinyAD does (and
+    // as ecc did before `FactorReuse::ONE_STEP`), so their iteration counts
+    // are not lengthened by inexact stale-factor steps
+    p.factor_reuse = FactorReuse::OFF;
     p
 }
 
