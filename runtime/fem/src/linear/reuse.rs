@@ -52,18 +52,19 @@
 //! **Default: one stale step per factor, where a factor is dear**
 //! ([`FactorReuse::ONE_STEP`], docs/benchmarks/reuse.md, "One stale step
 //! per factor"). On this machine a stale-factor CG iteration costs 1/5–1/8
-//! of a factorisation, and a reused step of the SD parameterisations needs
-//! 2–3 iterations to reach the forcing term (≤ 0.1) when the factor is one
-//! step old, and fails (3 iterations wasted) when it is two steps old: the
-//! projected Hessian moves too much per step. So the default tries the
-//! stale factor for at most one step after the step that made it
-//! (`max_age` = 1), with at most 3 iterations, and only where one
-//! factorisation is worth ≥ 5 CG iterations by the work estimate (4)
-//! (θ = 0.6). Measured end to end (`ecc sim`, scene defaults, same
-//! session): the 1M-triangle disk 8 iterations with 5 factorisations
-//! instead of 8, the 135k-triangle disk 7 with 4 (1.56 s against 1.94 s of
-//! Newton time); the hand.mesh handle scenes within noise with 40 % fewer
-//! factorisations. camelhead, armadillo_cut_low and hand_1_i_f5000 (a
+//! of a factorisation, and on the 1M-triangle SD parameterisation a reused
+//! step needed 2–3 iterations to reach the forcing term (≤ 0.1) when the
+//! factor was one step old, and failed (3 iterations wasted) every time it
+//! was two steps old: the projected Hessian moves too much per step. So
+//! the default tries the stale factor for at most one step after the step
+//! that made it (`max_age` = 1), with at most 3 iterations, and only where
+//! one factorisation is worth ≥ 5 CG iterations by the work estimate (4)
+//! (θ = 0.6). Measured end to end against a factorisation every step
+//! (`ecc sim`, scene defaults, paired rounds, Newton time): the
+//! 1M-triangle disk 8 iterations with 5 factorisations instead of 8,
+//! 0.84–0.95×; the 135k-triangle disk 7 with 4, 0.96–1.03×; the 8-frame
+//! hand.mesh scenes ARAP 17 of 29, 0.75–0.88×, SNH 34 of 56 (57 steps),
+//! 0.96–1.21×. camelhead, armadillo_cut_low and hand_1_i_f5000 (a
 //! factorisation worth 3.1, 1.5 and 0.9 CG iterations) stay below the
 //! threshold: tried there, reuse made them 1.2–1.5× slower.
 //! [`FactorReuse::OFF`] factorises every step; [`FactorReuse::STALE_CG`]
