@@ -119,6 +119,9 @@ pub struct LinearSystem {
     discarded_analyses: usize,
     /// The Cholesky factor holds a successful numeric factorisation.
     factored: bool,
+    /// [`LinearSystem::solve_stale`] calls since that factorisation (the
+    /// factor's age, limited by [`FactorReuse::max_age`]).
+    stale_solves: usize,
     /// CG state for solves preconditioned by a factor, stale or mixed
     /// (allocated on first use).
     cg: Option<Box<Pcg>>,
@@ -222,6 +225,7 @@ impl LinearSystem {
             analysis,
             discarded_analyses,
             factored: false,
+            stale_solves: 0,
             cg: None,
         })
     }
@@ -298,6 +302,7 @@ impl LinearSystem {
                 self.factored = false;
                 let done = factorize_shifted(f, pattern, values, shift, mean_diag, max_attempts)?;
                 self.factored = true;
+                self.stale_solves = 0;
                 Ok(info(done))
             }
             Backend::Adaptive(a) => a
@@ -337,7 +342,8 @@ impl LinearSystem {
 
     /// CG iterations a step may spend with the stale factor, eq. (4) of
     /// [`reuse`], with the factorisation's work from `limits`' κ (0 when
-    /// there is no factor or reuse does not pay).
+    /// there is no factor, it has served `reuse.max_age` stale solves
+    /// already, or reuse does not pay).
     pub fn stale_budget(
         &self,
         pattern: &Pattern,
@@ -347,6 +353,9 @@ impl LinearSystem {
         let (Some(f), true) = (self.cholesky(), self.has_factor()) else {
             return 0;
         };
+        if self.stale_solves >= reuse.max_age {
+            return 0;
+        }
         let flops = f.factor_flops();
         let (n, nnz) = (pattern.n() as f64, pattern.nnz() as f64);
         let nnz_l = f.factor_nnz() as f64;
@@ -408,6 +417,7 @@ impl LinearSystem {
         if !self.factored {
             return None;
         }
+        self.stale_solves += 1;
         let cg = self.cg.get_or_insert_with(|| Box::new(Pcg::new(pattern)));
         let info = cg.solve_preconditioned(values, rhs, out, rel_tol, max_iters, |r, z| {
             z.copy_from_slice(r);

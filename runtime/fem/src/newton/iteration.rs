@@ -34,9 +34,6 @@ pub(super) struct SolveState {
     pub(super) last: (f64, f64),
     /// Accepted steps so far.
     pub(super) iter: usize,
-    /// Steps solved with the current numeric factor since it was made
-    /// (0 right after a factorisation; [`crate::linear::FactorReuse::max_age`]).
-    factor_age: usize,
 }
 
 impl SolveState {
@@ -60,7 +57,6 @@ impl SolveState {
             initial: None,
             last: (f64::INFINITY, f64::INFINITY),
             iter: 0,
-            factor_age: 0,
             p,
         }
     }
@@ -195,7 +191,7 @@ impl<const D: usize> NewtonSolver<D> {
         let reuse = s.p.factor_reuse;
         let pattern = self.assembler.pattern();
         let budget = self.linear.stale_budget(pattern, &reuse, &s.p.auto_limits);
-        if budget == 0 || a.used_filter == Filter::None || s.factor_age >= reuse.max_age {
+        if budget == 0 || a.used_filter == Filter::None {
             return self.fresh_direction(s, a, 0, 0.0);
         }
         let t = Instant::now();
@@ -221,7 +217,6 @@ impl<const D: usize> NewtonSolver<D> {
         let slope = dot(&self.g, &self.d, &mut self.partials);
         let converged = !solve.negative_curvature && solve.relative_residual <= target;
         if converged && slope.is_finite() && slope < 0.0 {
-            s.factor_age += 1;
             return Ok(Direction {
                 prep,
                 solve,
@@ -261,7 +256,6 @@ impl<const D: usize> NewtonSolver<D> {
         );
         let t_factor = t1.elapsed().as_secs_f64();
         s.times.factor += t_factor;
-        s.factor_age = 0;
         let prep = prep.map_err(|f| NewtonStatus::FactorizationFailed { shift: f.shift })?;
         if raw {
             s.raw_shift = prep.relative_shift;
