@@ -7,8 +7,9 @@
 //!
 //! SOLVER: `cholesky`, `pcg` or `auto`, optionally `:jacobi`,
 //! `:block_jacobi` or `:ic0` (the PCG preconditioner, default IC(0)) and
-//! for `auto` `:CAP` (`AutoLimits::pcg_rel_tol`); REUSE: `off` or `ITERS:TOL[:THETA]`
-//! (the `FactorReuse` budget, residual cap and work fraction; default: `FactorReuse::default()`).
+//! for `auto` `:CAP` (`AutoLimits::pcg_rel_tol`); REUSE: `off` or `ITERS:TOL[:THETA[:AGE]]`
+//! (the `FactorReuse` budget, residual cap, work fraction and `max_age`,
+//! no age limit when omitted; without REUSE: `FactorReuse::default()`).
 //! `disk:RINGS` is the generated bumpy disk of `ecc-mesh`'s `setup_timing`
 //! example (6·RINGS² triangles; 409 rings ≈ 1M). `tet:FILE:arap|snh` is a
 //! 3D handle problem instead: the lowest 15 % (in y) of the tet mesh fixed,
@@ -41,7 +42,7 @@ fn reuse(spec: &str) -> Result<FactorReuse, String> {
     if spec == "off" {
         return Ok(FactorReuse::OFF);
     }
-    let bad = || format!("bad reuse `{spec}` (off or ITERS:TOL[:THETA])");
+    let bad = || format!("bad reuse `{spec}` (off or ITERS:TOL[:THETA[:AGE]])");
     let parts: Vec<&str> = spec.split(':').collect();
     let num = |i: usize| parts.get(i).map(|p| p.parse::<f64>().map_err(|_| bad()));
     let default = FactorReuse::default();
@@ -109,7 +110,9 @@ fn tet_problem(
 
 fn run(args: &[String]) -> Result<String, String> {
     let [m, solver, rest @ ..] = args else {
-        return Err("usage: reuse MESH|disk:RINGS cholesky|pcg|auto [off|ITERS:TOL]".into());
+        return Err(
+            "usage: reuse MESH|disk:RINGS cholesky|pcg|auto [off|ITERS:TOL[:THETA[:AGE]]]".into(),
+        );
     };
     let mut opts = ParamOptions::default();
     // the fixed clamp of docs/benchmarks/reuse.md's runs (trust-region

@@ -31,7 +31,9 @@
 //!   retried once with a fresh factor from the same iterate);
 //! * the Hessian is unfiltered (the raw-Hessian steps of
 //!   `FilterPolicy::TrustRegionNewton` need the growing shift search that
-//!   only a factorisation performs).
+//!   only a factorisation performs);
+//! * the factor has already served [`FactorReuse::max_age`] stale solves
+//!   (without an attempt).
 //!
 //! **Budget by cost.** One CG iteration with (1) costs two triangular
 //! solves with L and one product with H, memory-bound:
