@@ -48,6 +48,34 @@ fn solve_ratio(
     Some(trace(r, problem, a)?.time_to(tol)? / trace(r, problem, b)?.time_to(tol)?)
 }
 
+/// One thread over two on `problem`: the median of the interleaved
+/// rounds' ratios ([`super::threads`]), or the kept traces' ratio for
+/// results without rounds.
+fn thread_ratio(r: &Results, problem: &str) -> Option<f64> {
+    r.thread_rounds
+        .iter()
+        .find(|t| t.problem == problem)
+        .and_then(|t| t.median_ratio())
+        .or_else(|| {
+            solve_ratio(
+                r,
+                problem,
+                SolveMethod::DefaultsOneThread,
+                SolveMethod::Defaults,
+                1e-4,
+            )
+        })
+}
+
+/// Every round's ratio of [`thread_ratio`], e.g. `1.28, 1.41, 1.47`.
+fn thread_round_ratios(r: &Results, problem: &str) -> String {
+    let Some(t) = r.thread_rounds.iter().find(|t| t.problem == problem) else {
+        return String::new();
+    };
+    let v: Vec<String> = t.ratios().iter().map(|x| format!("{x:.2}")).collect();
+    v.join(", ")
+}
+
 /// The headline bullets: per-element speed-ups, accuracy, the
 /// parameterisation solves and the largest scaling runs.
 fn headline(r: &Results, out: &mut String) {
@@ -150,10 +178,14 @@ fn solve_headline(r: &Results, out: &mut String) {
         );
     }
     let range = |a: SolveMethod, b: SolveMethod| {
+        let ratio = |name: &str| match (a, b) {
+            (SolveMethod::DefaultsOneThread, SolveMethod::Defaults) => thread_ratio(r, name),
+            _ => solve_ratio(r, name, a, b, 1e-4),
+        };
         let v: Vec<(f64, &str)> = r
             .problems
             .iter()
-            .filter_map(|p| Some((solve_ratio(r, &p.name, a, b, 1e-4)?, p.name.as_str())))
+            .filter_map(|p| Some((ratio(&p.name)?, p.name.as_str())))
             .collect();
         let lo = v.iter().min_by(|x, y| x.0.total_cmp(&y.0))?;
         let hi = v.iter().max_by(|x, y| x.0.total_cmp(&y.0))?;
@@ -165,7 +197,8 @@ fn solve_headline(r: &Results, out: &mut String) {
     if let Some(x) = range(SolveMethod::DefaultsOneThread, SolveMethod::Defaults) {
         let _ = writeln!(
             out,
-            "* **Two threads against one, per solve** (ecc defaults, time to 1e-4): {x}."
+            "* **Two threads against one, per solve** (ecc defaults, time to 1e-4, median of {} interleaved rounds): {x}.",
+            r.thread_rounds.first().map_or(1, |t| t.one.len())
         );
     }
     if let Some(x) = range(SolveMethod::Autodiff, SolveMethod::Defaults) {
@@ -181,9 +214,11 @@ fn targets_table(r: &Results, out: &mut String) {
     let _ = writeln!(
         out,
         "### Summary: defaults, threads, autodiff\n\nPer problem, from the rows below: iterations to 1e-4 of the ecc defaults and of \
-         numeric per-element projection (the criterion: defaults ≤ 1.05 × numeric); time to 1e-4 of the defaults on one and on two threads; \
+         numeric per-element projection (the criterion: defaults ≤ 1.05 × numeric); time to 1e-4 of the defaults on one and on two threads (each one's fastest of {} interleaved rounds, alternating which runs first) \
+         and the median of the per-round ratios, every round's ratio in brackets; \
          time to 1e-4 of the autodiff baseline (forward-mode second derivatives + numeric element projection + Cholesky, what TinyAD does) \
-         over the defaults'. — : not reached, or no autodiff form for that energy.\n"
+         over the defaults'. — : not reached, or no autodiff form for that energy.\n",
+        r.thread_rounds.first().map_or(1, |t| t.one.len())
     );
     header(
         out,
@@ -212,7 +247,12 @@ fn targets_table(r: &Results, out: &mut String) {
             iters(SolveMethod::NumericProjection),
             secs(tt(SolveMethod::DefaultsOneThread)),
             secs(tt(SolveMethod::Defaults)),
-            ratio(SolveMethod::DefaultsOneThread, SolveMethod::Defaults),
+            thread_ratio(r, &p.name).map_or("—".into(), |x| {
+                match thread_round_ratios(r, &p.name) {
+                    rounds if rounds.is_empty() => format!("{x:.2}×"),
+                    rounds => format!("{x:.2}× ({rounds})"),
+                }
+            }),
             secs(tt(SolveMethod::Autodiff)),
             ratio(SolveMethod::Autodiff, SolveMethod::Defaults),
         );

@@ -3,9 +3,9 @@
 //!
 //! | size | per element | per solve | scaling |
 //! |---|---|---|---|
-//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 5 problems × 8 methods, ≤ 30 s each | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
-//! | `--quick` | 2 samples/class, 128 × 11 | same problems, ≤ 8 s each | tris 10k, 100k; tets 10k, 30k; 2 steps |
-//! | tiny (tests) | 1 sample, 2 energies, 3 classes | hand_1_i_f5000, 2 s | 2k tris, 1k tets, 1 step |
+//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 5 problems × 8 methods, ≤ 30 s each; the 1-vs-2-threads pair × 5 rounds | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
+//! | `--quick` | 2 samples/class, 128 × 11 | same problems, ≤ 8 s each; pair × 3 | tris 10k, 100k; tets 10k, 30k; 2 steps |
+//! | tiny (tests) | 1 sample, 2 energies, 3 classes | hand_1_i_f5000, 2 s; pair × 2 | 2k tris, 1k tets, 1 step |
 //!
 //! Run with `cargo run --release -p ecc-benches --bin report -- [--quick] [--out DIR]`.
 
@@ -13,6 +13,7 @@ pub mod cholmod;
 pub mod figures;
 pub mod machine;
 pub mod markdown;
+pub mod threads;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -21,8 +22,9 @@ use serde::Serialize;
 
 use crate::element::{accuracy, autodiff, timing};
 use crate::scaling::{self, ScalingPlan, ScalingRow};
-use crate::solve::{self, SolveLimits, SolveMethod, Trace};
+use crate::solve::{self, SolveError, SolveLimits, SolveMethod, Trace};
 use machine::Machine;
+use threads::ThreadRounds;
 
 /// Size of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -65,7 +67,10 @@ pub struct Results {
     /// The autodiff baseline per element.
     pub autodiff: autodiff::AutodiffTiming,
     pub problems: Vec<ProblemInfo>,
+    /// Each method's fastest trace (one per problem and method).
     pub traces: Vec<Trace>,
+    /// One thread against two, round by round ([`threads`]).
+    pub thread_rounds: Vec<ThreadRounds>,
     pub solve_limits: (f64, usize, usize),
     pub scaling: Vec<ScalingRow>,
     pub scaling_iters: usize,
@@ -149,6 +154,7 @@ fn scaling_plan(size: Size) -> ScalingPlan {
 struct SolveStudy {
     problems: Vec<ProblemInfo>,
     traces: Vec<Trace>,
+    thread_rounds: Vec<ThreadRounds>,
 }
 
 impl SolveStudy {
@@ -176,19 +182,73 @@ impl SolveStudy {
             Err(e) => notes.push(format!("{name} / {}: {e}", m.label())),
         }
     }
+
+    /// Every method on problem `name` (`run` solves it with a method): the
+    /// thread pair first, `rounds` interleaved rounds of it keeping each
+    /// method's fastest trace ([`threads`]), then the others once each.
+    fn run_problem(
+        &mut self,
+        name: &str,
+        rounds: usize,
+        log: &mut dyn FnMut(&str),
+        notes: &mut Vec<String>,
+        mut run: impl FnMut(SolveMethod) -> Result<Trace, SolveError>,
+    ) {
+        let mut pair = ThreadRounds {
+            problem: name.into(),
+            ..Default::default()
+        };
+        let mut best: [Option<Trace>; 2] = [None, None];
+        for k in 0..rounds {
+            for m in threads::round_order(k) {
+                let result = run(m);
+                threads::push_round(&mut pair, m, result.as_ref().ok());
+                let slot = &mut best[usize::from(m == SolveMethod::DefaultsOneThread)];
+                match result {
+                    Ok(t) if slot.as_ref().is_none_or(|b| threads::faster(&t, b)) => {
+                        *slot = Some(t)
+                    }
+                    Ok(_) => {}
+                    Err(e) => notes.push(format!("{name} / {} (round {k}): {e}", m.label())),
+                }
+            }
+        }
+        log(&format!(
+            "  {name}: 1 thread / 2 threads per round {:.2?}",
+            pair.ratios()
+        ));
+        for (m, t) in [SolveMethod::Defaults, SolveMethod::DefaultsOneThread]
+            .into_iter()
+            .zip(best)
+        {
+            if let Some(t) = t {
+                self.record::<SolveError>(name, m, Ok(t), log, notes);
+            }
+        }
+        self.thread_rounds.push(pair);
+        for m in SolveMethod::ALL.into_iter().filter(|m| !m.is_defaults()) {
+            let result = run(m);
+            self.record(name, m, result, log, notes);
+        }
+    }
+}
+
+/// Interleaved rounds of the one-vs-two-threads pair per problem.
+fn thread_rounds(size: Size) -> usize {
+    match size {
+        Size::Full => 5,
+        Size::Quick => 3,
+        Size::Tiny => 2,
+    }
 }
 
 /// Run the solve study; failures become notes.
-fn solves(
-    cfg: &Config,
-    log: &mut dyn FnMut(&str),
-    notes: &mut Vec<String>,
-) -> (Vec<ProblemInfo>, Vec<Trace>) {
+fn solves(cfg: &Config, log: &mut dyn FnMut(&str), notes: &mut Vec<String>) -> SolveStudy {
     let limits = solve_limits(cfg.size);
     let mut study = SolveStudy::default();
     param_solves(cfg, &limits, &mut study, log, notes);
     deform_solves(cfg, &limits, &mut study, log, notes);
-    (study.problems, study.traces)
+    study
 }
 
 /// Symmetric Dirichlet parameterisations of the surface meshes, every method.
@@ -223,12 +283,11 @@ fn param_solves(
             elements: mesh.triangles.len(),
             vertices: mesh.positions.len(),
         });
-        for m in SolveMethod::ALL {
+        study.run_problem(name, thread_rounds(cfg.size), log, notes, |m| {
             let e: Arc<dyn ecc_runtime::Energy<2>> =
                 Arc::new(ecc_energies::SymmetricDirichlet2::new());
-            let result = solve::parameterization(name, &mesh, e, m, limits);
-            study.record(name, m, result, log, notes);
-        }
+            solve::parameterization(name, &mesh, e, m, limits)
+        });
     }
 }
 
@@ -261,15 +320,15 @@ fn deform_solves(
                         elements: mesh.tets.len(),
                         vertices: mesh.positions.len(),
                     });
-                    for m in SolveMethod::ALL {
+                    let rounds = thread_rounds(cfg.size);
+                    study.run_problem(name, rounds, log, notes, |m| {
                         let e: Arc<dyn ecc_runtime::Energy<3>> = if which == "arap" {
                             Arc::new(ecc_energies::Arap::new())
                         } else {
                             Arc::new(ecc_energies::StableNeoHookean::new())
                         };
-                        let result = solve::deformation(name, &mesh, e, m, limits);
-                        study.record(name, m, result, log, notes);
-                    }
+                        solve::deformation(name, &mesh, e, m, limits)
+                    });
                 }
             }
         }
@@ -311,7 +370,7 @@ pub fn run(cfg: &Config, log: &mut dyn FnMut(&str)) -> Result<Results, ReportErr
     .map_err(en)?;
     log(&format!("    {:.1} s", autodiff.seconds));
     log("2/3 per solve");
-    let (problems, traces) = solves(cfg, log, &mut notes);
+    let study = solves(cfg, log, &mut notes);
     log("3/3 scaling");
     let plan = scaling_plan(cfg.size);
     let scaling = scaling::run(&plan, |r| {
@@ -329,8 +388,9 @@ pub fn run(cfg: &Config, log: &mut dyn FnMut(&str)) -> Result<Results, ReportErr
         timing,
         accuracy,
         autodiff,
-        problems,
-        traces,
+        problems: study.problems,
+        traces: study.traces,
+        thread_rounds: study.thread_rounds,
         solve_limits: (limits.seconds, limits.newton_iters, limits.proxy_iters),
         scaling,
         scaling_iters: plan.iters,
