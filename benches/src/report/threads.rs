@@ -59,7 +59,11 @@ pub fn median(mut v: Vec<f64>) -> Option<f64> {
 /// even rounds, one thread first in odd ones.
 pub fn round_order(k: usize) -> [SolveMethod; 2] {
     let pair = [SolveMethod::Defaults, SolveMethod::DefaultsOneThread];
-    if k % 2 == 0 { pair } else { [pair[1], pair[0]] }
+    if k.is_multiple_of(2) {
+        pair
+    } else {
+        [pair[1], pair[0]]
+    }
 }
 
 /// Whether `candidate` is a better representative of its method than
