@@ -2,7 +2,6 @@
 //! the folder holds the Markdown, the PNGs and parseable JSON.
 
 use ecc_benches::report::{self, Config, Size};
-use ecc_benches::solve::SolveMethod;
 
 #[test]
 fn tiny_report_writes_markdown_pngs_and_json() {
@@ -17,10 +16,14 @@ fn tiny_report_writes_markdown_pngs_and_json() {
     assert!(r.notes.is_empty(), "problems: {:?}", r.notes);
     assert!(!r.timing.rows.is_empty() && !r.accuracy.rows.is_empty());
     assert!(!r.traces.is_empty() && !r.scaling.is_empty());
-    // the thread pair ran in two interleaved rounds and kept one trace each
-    for t in &r.thread_rounds {
-        assert_eq!((t.one.len(), t.two.len()), (2, 2), "{t:?}");
-        for m in [SolveMethod::Defaults, SolveMethod::DefaultsOneThread] {
+    // the headline methods ran in two interleaved rounds and kept one trace each
+    for t in &r.rounds {
+        assert_eq!(
+            (t.defaults.len(), t.one_thread.len(), t.autodiff.len()),
+            (2, 2, 2),
+            "{t:?}"
+        );
+        for m in ecc_benches::report::rounds::PAIRED {
             let kept = r
                 .traces
                 .iter()
@@ -28,7 +31,7 @@ fn tiny_report_writes_markdown_pngs_and_json() {
             assert_eq!(kept.count(), 1, "{} / {m:?}", t.problem);
         }
     }
-    assert!(!r.thread_rounds.is_empty());
+    assert!(!r.rounds.is_empty());
     let md = std::fs::read_to_string(dir.path().join("BENCHMARKS.md")).expect("markdown");
     for section in [
         "## Headline numbers",
@@ -114,7 +117,7 @@ fn writing_into_a_file_path_is_an_error_not_a_panic() {
         autodiff: Default::default(),
         problems: vec![],
         traces: vec![],
-        thread_rounds: vec![],
+        rounds: vec![],
         solve_limits: (0.0, 0, 0),
         scaling: vec![],
         scaling_iters: 0,

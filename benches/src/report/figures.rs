@@ -297,7 +297,7 @@ mod tests {
             autodiff: Default::default(),
             problems,
             traces,
-            thread_rounds: Vec::new(),
+            rounds: Vec::new(),
             solve_limits: (0.0, 0, 0),
             scaling,
             scaling_iters: 0,

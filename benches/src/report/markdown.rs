@@ -48,32 +48,39 @@ fn solve_ratio(
     Some(trace(r, problem, a)?.time_to(tol)? / trace(r, problem, b)?.time_to(tol)?)
 }
 
-/// One thread over two on `problem`: the median of the interleaved
-/// rounds' ratios ([`super::threads`]), or the kept traces' ratio for
-/// results without rounds.
-fn thread_ratio(r: &Results, problem: &str) -> Option<f64> {
-    r.thread_rounds
+/// Method `m`'s time over the defaults' on `problem`: the median of the
+/// interleaved rounds' ratios ([`super::rounds`]), or the kept traces'
+/// ratio for results without rounds.
+fn paired_ratio(r: &Results, problem: &str, m: SolveMethod) -> Option<f64> {
+    r.rounds
         .iter()
         .find(|t| t.problem == problem)
-        .and_then(|t| t.median_ratio())
-        .or_else(|| {
-            solve_ratio(
-                r,
-                problem,
-                SolveMethod::DefaultsOneThread,
-                SolveMethod::Defaults,
-                1e-4,
-            )
-        })
+        .and_then(|t| t.median_ratio(m))
+        .or_else(|| solve_ratio(r, problem, m, SolveMethod::Defaults, 1e-4))
 }
 
-/// Every round's ratio of [`thread_ratio`], e.g. `1.28, 1.41, 1.47`.
-fn thread_round_ratios(r: &Results, problem: &str) -> String {
-    let Some(t) = r.thread_rounds.iter().find(|t| t.problem == problem) else {
-        return String::new();
+/// [`paired_ratio`] as a cell: `1.45× (1.21, 1.68, 1.45)`, every round's
+/// ratio in brackets; `—` without one.
+fn paired_cell(r: &Results, problem: &str, m: SolveMethod) -> String {
+    let Some(x) = paired_ratio(r, problem, m) else {
+        return "—".into();
     };
-    let v: Vec<String> = t.ratios().iter().map(|x| format!("{x:.2}")).collect();
-    v.join(", ")
+    let each: Vec<String> = r
+        .rounds
+        .iter()
+        .find(|t| t.problem == problem)
+        .map(|t| t.ratios(m).iter().map(|x| format!("{x:.2}")).collect())
+        .unwrap_or_default();
+    if each.is_empty() {
+        format!("{x:.2}×")
+    } else {
+        format!("{x:.2}× ({})", each.join(", "))
+    }
+}
+
+/// Rounds per problem of [`paired_ratio`] (1 for results without rounds).
+fn n_rounds(r: &Results) -> usize {
+    r.rounds.first().map_or(1, |t| t.len())
 }
 
 /// The headline bullets: per-element speed-ups, accuracy, the
@@ -167,25 +174,17 @@ fn solve_headline(r: &Results, out: &mut String) {
             secs(t(SolveMethod::NumericProjection)),
             secs(t(SolveMethod::LaplacianProxy)),
             secs(t(SolveMethod::Autodiff)),
-            solve_ratio(
-                r,
-                &p.name,
-                SolveMethod::Autodiff,
-                SolveMethod::Defaults,
-                1e-4
-            )
-            .map_or(String::new(), |x| format!(" Autodiff/defaults: {x:.2}×."))
+            paired_ratio(r, &p.name, SolveMethod::Autodiff).map_or(String::new(), |x| format!(
+                " Autodiff/defaults: {x:.2}× (median of {} rounds).",
+                n_rounds(r)
+            ))
         );
     }
-    let range = |a: SolveMethod, b: SolveMethod| {
-        let ratio = |name: &str| match (a, b) {
-            (SolveMethod::DefaultsOneThread, SolveMethod::Defaults) => thread_ratio(r, name),
-            _ => solve_ratio(r, name, a, b, 1e-4),
-        };
+    let range = |m: SolveMethod| {
         let v: Vec<(f64, &str)> = r
             .problems
             .iter()
-            .filter_map(|p| Some((ratio(&p.name)?, p.name.as_str())))
+            .filter_map(|p| Some((paired_ratio(r, &p.name, m)?, p.name.as_str())))
             .collect();
         let lo = v.iter().min_by(|x, y| x.0.total_cmp(&y.0))?;
         let hi = v.iter().max_by(|x, y| x.0.total_cmp(&y.0))?;
@@ -194,17 +193,18 @@ fn solve_headline(r: &Results, out: &mut String) {
             lo.0, lo.1, hi.0, hi.1
         ))
     };
-    if let Some(x) = range(SolveMethod::DefaultsOneThread, SolveMethod::Defaults) {
+    if let Some(x) = range(SolveMethod::DefaultsOneThread) {
         let _ = writeln!(
             out,
             "* **Two threads against one, per solve** (ecc defaults, time to 1e-4, median of {} interleaved rounds): {x}.",
-            r.thread_rounds.first().map_or(1, |t| t.one.len())
+            n_rounds(r)
         );
     }
-    if let Some(x) = range(SolveMethod::Autodiff, SolveMethod::Defaults) {
+    if let Some(x) = range(SolveMethod::Autodiff) {
         let _ = writeln!(
             out,
-            "* **Autodiff baseline against ecc's defaults, per solve** (time to 1e-4): {x}."
+            "* **Autodiff baseline against ecc's defaults, per solve** (time to 1e-4, median of {} interleaved rounds): {x}.",
+            n_rounds(r)
         );
     }
 }
@@ -214,11 +214,11 @@ fn targets_table(r: &Results, out: &mut String) {
     let _ = writeln!(
         out,
         "### Summary: defaults, threads, autodiff\n\nPer problem, from the rows below: iterations to 1e-4 of the ecc defaults and of \
-         numeric per-element projection (the criterion: defaults ≤ 1.05 × numeric); time to 1e-4 of the defaults on one and on two threads (each one's fastest of {} interleaved rounds, alternating which runs first) \
-         and the median of the per-round ratios, every round's ratio in brackets; \
-         time to 1e-4 of the autodiff baseline (forward-mode second derivatives + numeric element projection + Cholesky, what TinyAD does) \
-         over the defaults'. — : not reached, or no autodiff form for that energy.\n",
-        r.thread_rounds.first().map_or(1, |t| t.one.len())
+         numeric per-element projection (the criterion: defaults ≤ 1.05 × numeric); time to 1e-4 of the defaults on one and on two threads, and of \
+         the autodiff baseline (forward-mode second derivatives + numeric element projection + Cholesky, what TinyAD does). These three run in {} \
+         interleaved rounds, the order rotating so each runs first in turn: times are each method's fastest round, ratios the median of the \
+         per-round ratios, every round's ratio in brackets. — : not reached, or no autodiff form for that energy.\n",
+        n_rounds(r)
     );
     header(
         out,
@@ -236,8 +236,6 @@ fn targets_table(r: &Results, out: &mut String) {
         let it = |m| trace(r, &p.name, m).and_then(|t| t.iters_to(1e-4));
         let tt = |m| trace(r, &p.name, m).and_then(|t| t.time_to(1e-4));
         let iters = |m| it(m).map_or("—".into(), |i: usize| i.to_string());
-        let ratio =
-            |a, b| solve_ratio(r, &p.name, a, b, 1e-4).map_or("—".into(), |x| format!("{x:.2}×"));
         let _ = writeln!(
             out,
             "| {} | {} | {} / {} | {} / {} | {} | {} | {} |",
@@ -247,14 +245,9 @@ fn targets_table(r: &Results, out: &mut String) {
             iters(SolveMethod::NumericProjection),
             secs(tt(SolveMethod::DefaultsOneThread)),
             secs(tt(SolveMethod::Defaults)),
-            thread_ratio(r, &p.name).map_or("—".into(), |x| {
-                match thread_round_ratios(r, &p.name) {
-                    rounds if rounds.is_empty() => format!("{x:.2}×"),
-                    rounds => format!("{x:.2}× ({rounds})"),
-                }
-            }),
+            paired_cell(r, &p.name, SolveMethod::DefaultsOneThread),
             secs(tt(SolveMethod::Autodiff)),
-            ratio(SolveMethod::Autodiff, SolveMethod::Defaults),
+            paired_cell(r, &p.name, SolveMethod::Autodiff),
         );
     }
     let _ = writeln!(out);
@@ -628,7 +621,10 @@ agree best; element quantities by the exact chain rule and projections by a doub
 projected references are as accurate as the raw one.
 * **Hard cases.** rest (F = I exactly), uniform scale, repeated σ, σ differing by 1e-9, σᵢ+σⱼ ≈ 0 (1e-7 off; ARAP has a genuine pole there), σ = 1e-6, inverted, \
 σ = 1e3, each under random rotations; random F = I + U(−½, ½), ⅛ inverted. Barrier energies skip det F ≤ 0.
-* **Timing.** Ratios are measured interleaved in one run (every round runs each method once over the same batch); absolute times depend on the machine's load.
+* **Timing.** Ratios are measured interleaved in one run (every round runs each method once over the same batch); absolute times depend on the machine's load. \
+Per solve, the defaults on two threads, on one thread and the autodiff baseline run in interleaved rounds (the order rotating, so each runs first in turn; \
+the first solve of a cold process measured up to 1.4× slower): their times are each one's fastest round, their ratios the median of the per-round ratios. \
+Every other method is one solve.
 * **Solve methods.** *analytic clamp / abs*: fixed filter max(λ, 0) / |λ|. *adaptive*: `FilterPolicy::TrustRegion` (Chen et al. 2024): clamp when the previous \
 step's ρ = actual/predicted decrease satisfies |ρ − 1| < 0.01, abs otherwise. *numeric element projection*: the same solver with each element's raw Hessian projected by \
 nalgebra `SymmetricEigen` (a term wrapper). *Laplacian proxy*: constant per-element H = 2|q|BᵀB (F-Hessian 2I: the rest-mesh Laplacian per coordinate, as in AQP and the \

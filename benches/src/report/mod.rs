@@ -3,9 +3,9 @@
 //!
 //! | size | per element | per solve | scaling |
 //! |---|---|---|---|
-//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 5 problems × 8 methods, ≤ 30 s each; the 1-vs-2-threads pair × 5 rounds | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
-//! | `--quick` | 2 samples/class, 128 × 11 | same problems, ≤ 8 s each; pair × 3 | tris 10k, 100k; tets 10k, 30k; 2 steps |
-//! | tiny (tests) | 1 sample, 2 energies, 3 classes | hand_1_i_f5000, 2 s; pair × 2 | 2k tris, 1k tets, 1 step |
+//! | full (default) | 4 samples/class, 256 elements × 41 rounds | 5 problems × 8 methods, ≤ 30 s each; defaults on 1 and 2 threads and autodiff × 5 interleaved rounds | tris 10k…1M, tets 10k…300k (Cholesky ≤ 100k), 3 steps |
+//! | `--quick` | 2 samples/class, 128 × 11 | same problems, ≤ 8 s each; × 3 rounds | tris 10k, 100k; tets 10k, 30k; 2 steps |
+//! | tiny (tests) | 1 sample, 2 energies, 3 classes | hand_1_i_f5000, 2 s; × 2 rounds | 2k tris, 1k tets, 1 step |
 //!
 //! Run with `cargo run --release -p ecc-benches --bin report -- [--quick] [--out DIR]`.
 
@@ -13,7 +13,7 @@ pub mod cholmod;
 pub mod figures;
 pub mod machine;
 pub mod markdown;
-pub mod threads;
+pub mod rounds;
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -24,7 +24,7 @@ use crate::element::{accuracy, autodiff, timing};
 use crate::scaling::{self, ScalingPlan, ScalingRow};
 use crate::solve::{self, SolveError, SolveLimits, SolveMethod, Trace};
 use machine::Machine;
-use threads::ThreadRounds;
+use rounds::Rounds;
 
 /// Size of a run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -69,8 +69,8 @@ pub struct Results {
     pub problems: Vec<ProblemInfo>,
     /// Each method's fastest trace (one per problem and method).
     pub traces: Vec<Trace>,
-    /// One thread against two, round by round ([`threads`]).
-    pub thread_rounds: Vec<ThreadRounds>,
+    /// The headline ratios' methods, round by round ([`rounds`]).
+    pub rounds: Vec<Rounds>,
     pub solve_limits: (f64, usize, usize),
     pub scaling: Vec<ScalingRow>,
     pub scaling_iters: usize,
@@ -154,7 +154,7 @@ fn scaling_plan(size: Size) -> ScalingPlan {
 struct SolveStudy {
     problems: Vec<ProblemInfo>,
     traces: Vec<Trace>,
-    thread_rounds: Vec<ThreadRounds>,
+    rounds: Vec<Rounds>,
 }
 
 impl SolveStudy {
@@ -183,9 +183,9 @@ impl SolveStudy {
         }
     }
 
-    /// Every method on problem `name` (`run` solves it with a method): the
-    /// thread pair first, `rounds` interleaved rounds of it keeping each
-    /// method's fastest trace ([`threads`]), then the others once each.
+    /// Every method on problem `name` (`run` solves it with a method):
+    /// first `rounds` interleaved rounds of [`rounds::PAIRED`] keeping each
+    /// method's fastest trace, then the others once each.
     fn run_problem(
         &mut self,
         name: &str,
@@ -194,47 +194,55 @@ impl SolveStudy {
         notes: &mut Vec<String>,
         mut run: impl FnMut(SolveMethod) -> Result<Trace, SolveError>,
     ) {
-        let mut pair = ThreadRounds {
-            problem: name.into(),
-            ..Default::default()
-        };
-        let mut best: [Option<Trace>; 2] = [None, None];
+        let mut record = Rounds::new(name);
+        let mut best: Vec<(SolveMethod, Trace)> = Vec::new();
+        let mut failed: Vec<SolveMethod> = Vec::new();
         for k in 0..rounds {
-            for m in threads::round_order(k) {
+            for m in rounds::round_order(k) {
+                if failed.contains(&m) {
+                    record.push(m, None);
+                    continue;
+                }
                 let result = run(m);
-                threads::push_round(&mut pair, m, result.as_ref().ok());
-                let slot = &mut best[usize::from(m == SolveMethod::DefaultsOneThread)];
+                record.push(m, result.as_ref().ok());
                 match result {
-                    Ok(t) if slot.as_ref().is_none_or(|b| threads::faster(&t, b)) => {
-                        *slot = Some(t)
+                    Ok(t) => match best.iter_mut().find(|(b, _)| *b == m) {
+                        Some((_, kept)) if rounds::faster(&t, kept) => *kept = t,
+                        Some(_) => {}
+                        None => best.push((m, t)),
+                    },
+                    Err(e) => {
+                        failed.push(m);
+                        notes.push(format!("{name} / {}: {e}", m.label()));
                     }
-                    Ok(_) => {}
-                    Err(e) => notes.push(format!("{name} / {} (round {k}): {e}", m.label())),
                 }
             }
         }
-        log(&format!(
-            "  {name}: 1 thread / 2 threads per round {:.2?}",
-            pair.ratios()
-        ));
-        for (m, t) in [SolveMethod::Defaults, SolveMethod::DefaultsOneThread]
-            .into_iter()
-            .zip(best)
-        {
-            if let Some(t) = t {
+        for m in [SolveMethod::DefaultsOneThread, SolveMethod::Autodiff] {
+            log(&format!(
+                "  {name}: {} / defaults per round {:.2?}",
+                m.label(),
+                record.ratios(m)
+            ));
+        }
+        for m in rounds::PAIRED {
+            if let Some(i) = best.iter().position(|(b, _)| *b == m) {
+                let (_, t) = best.swap_remove(i);
                 self.record::<SolveError>(name, m, Ok(t), log, notes);
             }
         }
-        self.thread_rounds.push(pair);
-        for m in SolveMethod::ALL.into_iter().filter(|m| !m.is_defaults()) {
-            let result = run(m);
-            self.record(name, m, result, log, notes);
+        self.rounds.push(record);
+        for m in SolveMethod::ALL {
+            if !rounds::PAIRED.contains(&m) {
+                let result = run(m);
+                self.record(name, m, result, log, notes);
+            }
         }
     }
 }
 
-/// Interleaved rounds of the one-vs-two-threads pair per problem.
-fn thread_rounds(size: Size) -> usize {
+/// Interleaved rounds of [`rounds::PAIRED`] per problem.
+fn paired_rounds(size: Size) -> usize {
     match size {
         Size::Full => 5,
         Size::Quick => 3,
@@ -283,7 +291,7 @@ fn param_solves(
             elements: mesh.triangles.len(),
             vertices: mesh.positions.len(),
         });
-        study.run_problem(name, thread_rounds(cfg.size), log, notes, |m| {
+        study.run_problem(name, paired_rounds(cfg.size), log, notes, |m| {
             let e: Arc<dyn ecc_runtime::Energy<2>> =
                 Arc::new(ecc_energies::SymmetricDirichlet2::new());
             solve::parameterization(name, &mesh, e, m, limits)
@@ -320,7 +328,7 @@ fn deform_solves(
                         elements: mesh.tets.len(),
                         vertices: mesh.positions.len(),
                     });
-                    let rounds = thread_rounds(cfg.size);
+                    let rounds = paired_rounds(cfg.size);
                     study.run_problem(name, rounds, log, notes, |m| {
                         let e: Arc<dyn ecc_runtime::Energy<3>> = if which == "arap" {
                             Arc::new(ecc_energies::Arap::new())
@@ -390,7 +398,7 @@ pub fn run(cfg: &Config, log: &mut dyn FnMut(&str)) -> Result<Results, ReportErr
         autodiff,
         problems: study.problems,
         traces: study.traces,
-        thread_rounds: study.thread_rounds,
+        rounds: study.rounds,
         solve_limits: (limits.seconds, limits.newton_iters, limits.proxy_iters),
         scaling,
         scaling_iters: plan.iters,
