@@ -623,7 +623,7 @@ projected references are as accurate as the raw one.
 σ = 1e3, each under random rotations; random F = I + U(−½, ½), ⅛ inverted. Barrier energies skip det F ≤ 0.
 * **Timing.** Ratios are measured interleaved in one run (every round runs each method once over the same batch); absolute times depend on the machine's load. \
 Per solve, the defaults on two threads, on one thread and the autodiff baseline run in interleaved rounds (the order rotating, so each runs first in turn; \
-the first solve of a cold process measured up to 1.4× slower): their times are each one's fastest round, their ratios the median of the per-round ratios. \
+in the first report run this way camelhead's first two-thread solve took 0.93 s, its later ones 0.76–0.81 s): their times are each one's fastest round, their ratios the median of the per-round ratios. \
 Every other method is one solve.
 * **Solve methods.** *analytic clamp / abs*: fixed filter max(λ, 0) / |λ|. *adaptive*: `FilterPolicy::TrustRegion` (Chen et al. 2024): clamp when the previous \
 step's ρ = actual/predicted decrease satisfies |ρ − 1| < 0.01, abs otherwise. *numeric element projection*: the same solver with each element's raw Hessian projected by \
