@@ -37,6 +37,11 @@ fn trace<'a>(r: &'a Results, problem: &str, m: SolveMethod) -> Option<&'a Trace>
         .find(|t| t.problem == problem && t.method == m)
 }
 
+/// The interleaved rounds of `problem` ([`super::rounds`]), if it has them.
+fn rounds_of<'a>(r: &'a Results, problem: &str) -> Option<&'a super::rounds::Rounds> {
+    r.rounds.iter().find(|t| t.problem == problem)
+}
+
 /// Ratio of time-to-tol of method `a` over method `b` on `problem`, if both reached it.
 fn solve_ratio(
     r: &Results,
@@ -52,9 +57,7 @@ fn solve_ratio(
 /// interleaved rounds' ratios ([`super::rounds`]), or the kept traces'
 /// ratio for results without rounds.
 fn paired_ratio(r: &Results, problem: &str, m: SolveMethod) -> Option<f64> {
-    r.rounds
-        .iter()
-        .find(|t| t.problem == problem)
+    rounds_of(r, problem)
         .and_then(|t| t.median_ratio(m))
         .or_else(|| solve_ratio(r, problem, m, SolveMethod::Defaults, 1e-4))
 }
@@ -65,10 +68,7 @@ fn paired_cell(r: &Results, problem: &str, m: SolveMethod) -> String {
     let Some(x) = paired_ratio(r, problem, m) else {
         return "—".into();
     };
-    let each: Vec<String> = r
-        .rounds
-        .iter()
-        .find(|t| t.problem == problem)
+    let each: Vec<String> = rounds_of(r, problem)
         .map(|t| t.ratios(m).iter().map(|x| format!("{x:.2}")).collect())
         .unwrap_or_default();
     if each.is_empty() {
