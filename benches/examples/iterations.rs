@@ -19,7 +19,8 @@
 //!   (Tutte start left on the unit circle), `raw` (mesh at its own scale,
 //!   objective Σ A (‖J‖² + ‖J⁻¹‖²): TinyAD-Examples' units; `disk+raw` is
 //!   their `parametrization_*.cc` setup), `trn` (filter policy
-//!   `TrustRegionNewton`).
+//!   `TrustRegionNewton`), `ord=<name>` (fill-reducing ordering, e.g.
+//!   `ord=block-amd`, instead of `auto`).
 //!
 //! Same start, scaling and stopping rule as the report (unit area, mean
 //! energy, uniform Tutte start, ‖∇E‖∞ ≤ 1e-4; here the solve stops there).
@@ -31,6 +32,7 @@ use std::sync::Arc;
 
 use ecc_benches::solve::{self, SolveError, SolveLimits, SolveMethod, Trace, Variant};
 use ecc_fem::elastic::{HYBRID_MIN_COND, Projection};
+use ecc_fem::linear::ordering::FillOrdering;
 use ecc_fem::{Filter, FilterPolicy};
 use ecc_runtime::Energy;
 
@@ -75,6 +77,13 @@ fn parse(spec: &str) -> Result<(SolveMethod, Variant), String> {
                 v.barrier_safety = t.barrier_safety;
                 v.backtrack = t.backtrack;
                 v.armijo_c1 = t.armijo_c1;
+            }
+            c if c.starts_with("ord=") => {
+                let name = &c["ord=".len()..];
+                v.ordering = Some(
+                    FillOrdering::from_name(name)
+                        .ok_or_else(|| format!("{spec}: unknown ordering `{name}`"))?,
+                );
             }
             c if c.starts_with("eps") => v.filter = Some(Filter::ClampEps(num("eps")?)),
             c if c.starts_with('s') => v.barrier_safety = num("s")?,

@@ -227,6 +227,9 @@ pub struct Variant {
     /// normalisation) and the summed objective Σ A (‖J‖² + ‖J⁻¹‖²) = 2 Σ |q| ψ
     /// (energy_scale 2) instead of the area-weighted mean.
     pub raw_units: bool,
+    /// Fill-reducing ordering of the Cholesky factor instead of the
+    /// default `auto`.
+    pub ordering: Option<ecc_fem::linear::ordering::FillOrdering>,
 }
 
 impl Default for Variant {
@@ -242,6 +245,7 @@ impl Default for Variant {
             tol_abs: THRESHOLDS[3],
             unit_disk_start: false,
             raw_units: false,
+            ordering: None,
         }
     }
 }
@@ -272,6 +276,9 @@ impl Variant {
         p.backtrack = self.backtrack;
         p.armijo_c1 = self.armijo_c1;
         p.tol_abs = self.tol_abs;
+        if let Some(o) = self.ordering {
+            p.cholesky.ordering = o;
+        }
     }
 }
 

@@ -457,7 +457,9 @@ pub struct SolverSpec {
     pub precision: Option<ecc_fem::linear::cholesky::FactorPrecision>,
     /// Fill-reducing ordering of the Cholesky factor: `auto` (default:
     /// `metis` for 2D systems of at least 500k unknowns, or there
-    /// `geometric` on flat meshes, `block-amd` otherwise), `block-amd`,
+    /// `geometric` on flat meshes; for 2D systems of 10k–50k unknowns
+    /// `metis` where its factor costs at most 0.6× block AMD's; `block-amd`
+    /// otherwise), `block-amd`,
     /// `amd`, `metis` or `geometric` (nested dissection from the rest
     /// positions: cheap to compute, good on flat meshes only); the run summary reports the one used
     /// (`ecc_fem::linear::ordering::FillOrdering`; docs/benchmarks/ordering.md).

@@ -11,8 +11,8 @@
 //! * [`FillOrdering::Amd`]: faer's approximate minimum degree on the full
 //!   unknown graph.
 //! * [`FillOrdering::BlockAmd`]: the same AMD on the vertex graph, expanded
-//!   (what [`FillOrdering::Auto`], the default, picks below
-//!   [`METIS_MIN_UNKNOWNS`] and in 3D).
+//!   (what [`FillOrdering::Auto`], the default, picks in 3D and below
+//!   [`METIS_MIN_UNKNOWNS`] unless METIS's factor is much cheaper).
 //! * [`FillOrdering::Metis`]: METIS nested dissection (`METIS_NodeND`) on the
 //!   vertex graph, vertex weights = unknowns per vertex; needs the `metis`
 //!   cargo feature (METIS is compiled from source by cargo, a C compiler is
@@ -53,11 +53,14 @@ pub enum FillOrdering {
     /// Geometric nested dissection of the vertex graph from the vertex
     /// positions (needs [`Coordinates`]).
     Geometric,
-    /// By size ([`FillOrdering::auto_choice`]): METIS for 2D systems of at
-    /// least [`METIS_MIN_UNKNOWNS`] unknowns when compiled in — or there the
-    /// geometric dissection when positions are known and its factor costs
-    /// at most [`GEOMETRIC_MAX_RATIO`] × block AMD's (a flat mesh) —, block
-    /// AMD otherwise.
+    /// By size ([`FillOrdering::auto_choice`]) and cost: METIS for 2D
+    /// systems of at least [`METIS_MIN_UNKNOWNS`] unknowns when compiled in
+    /// — or there the geometric dissection when positions are known and its
+    /// factor costs at most [`GEOMETRIC_MAX_RATIO`] × block AMD's (a flat
+    /// mesh) —; for 2D systems of [`METIS_PROBE_UNKNOWNS`] unknowns, METIS
+    /// when its factor costs at most [`METIS_MAX_RATIO`] × block AMD's (both
+    /// computed, where block AMD's looks poor:
+    /// [`METIS_PROBE_MIN_CONSTANT`]); block AMD otherwise.
     Auto,
 }
 
@@ -135,7 +138,10 @@ impl FillOrdering {
     /// system is 2D (fewer than 2.5 unknowns per group) and
     /// n ≥ [`METIS_MIN_UNKNOWNS`]; block AMD otherwise. Where this says
     /// METIS and the unknowns have positions, `Auto` takes the geometric
-    /// dissection instead on a flat mesh ([`GEOMETRIC_MAX_RATIO`]).
+    /// dissection instead on a flat mesh ([`GEOMETRIC_MAX_RATIO`]); where it
+    /// says block AMD for a 2D system of [`METIS_PROBE_UNKNOWNS`] unknowns,
+    /// `Auto` takes METIS instead when its factor is much cheaper
+    /// ([`METIS_MAX_RATIO`]).
     pub fn auto_choice(n: usize, groups: usize) -> FillOrdering {
         let two_d = 2 * n < 5 * groups;
         if FillOrdering::Metis.is_available() && two_d && n >= METIS_MIN_UNKNOWNS {
@@ -329,6 +335,10 @@ pub(crate) fn permutation(
     {
         return Ok((Some(sv.expand(&gperm)), FillOrdering::Geometric));
     }
+    if ordering == FillOrdering::Auto && used == FillOrdering::BlockAmd && probes_metis(&sv) {
+        let (gperm, chosen) = cheaper_of_metis_and_amd(&sv)?;
+        return Ok((Some(sv.expand(&gperm)), chosen));
+    }
     let perm = match used {
         FillOrdering::Metis => metis_permutation(&sv)?,
         FillOrdering::Geometric => geometric_permutation(&sv, pattern.n(), coords)?,
@@ -425,15 +435,76 @@ fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
     Ok(counts.iter().map(|&c| (c as f64).powi(2)).sum())
 }
 
-#[cfg(feature = "metis")]
-fn metis_permutation(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
-    let gperm = metis_nd::node_nd(sv)?;
-    Ok(sv.expand(&gperm))
+/// The 2D systems (unknowns) for which [`FillOrdering::Auto`] may compute
+/// METIS beside block AMD ([`METIS_PROBE_MIN_CONSTANT`]) and keep the
+/// cheaper factor ([`METIS_MAX_RATIO`]). Below, a factorisation costs about
+/// a millisecond (hand_1_i_f5000, 5k unknowns), less than METIS itself;
+/// above, computing METIS costs more than it can save before these solves
+/// converge: on the 136k-unknown bumpy disk it added 0.35–0.40 s to a
+/// 0.45 s setup (`ecc sim`, three alternating runs) and would save 18 ms
+/// per factorisation, 4 factorisations in all.
+pub const METIS_PROBE_UNKNOWNS: std::ops::Range<usize> = 10_000..50_000;
+
+/// Largest ratio of METIS's factor cost to block AMD's (`group_flops` on the
+/// vertex graph) at which [`FillOrdering::Auto`] takes METIS below
+/// [`METIS_MIN_UNKNOWNS`]. Measured (ordering.md, "METIS where it pays"):
+/// camelhead 0.54, where METIS's split factorisations took 0.30–0.34 s
+/// against 0.41–0.53 s over the same 19 and its analysis 0.05 s more
+/// (`ecc sim`, alternating runs); the 136k-unknown bumpy disk 0.70, where
+/// METIS saves 18 ms per factorisation for 0.24 s more analysis (13
+/// factorisations to pay, 8–9 Newton steps): a factor with smaller
+/// supernodes gains less than its flops say, hence the margin.
+pub const METIS_MAX_RATIO: f64 = 0.6;
+
+/// Block AMD's factor cost (`group_flops`) per g^1.5 (g vertex groups)
+/// below which [`FillOrdering::Auto`] does not compute METIS for a 2D system
+/// under [`METIS_MIN_UNKNOWNS`]: nested dissection of a planar mesh costs
+/// ≈ c·g^1.5 flops, and METIS's c measured 15 (camelhead) to 20 (bumpy
+/// disk, 68k vertices), so block AMD under 12·g^1.5 leaves METIS little to
+/// gain. Measured block AMD: camelhead 28.6 (METIS taken, ratio 0.54),
+/// the 136k-unknown bumpy disk 28.5 (METIS 0.70 of it; above the probed
+/// sizes), armadillo_cut_low 4.5 (a mesh cut open along seams; METIS 4.8,
+/// not computed).
+pub const METIS_PROBE_MIN_CONSTANT: f64 = 12.0;
+
+/// Whether [`FillOrdering::Auto`] may price METIS against block AMD here:
+/// METIS compiled in and a 2D system (fewer than 2.5 unknowns per group)
+/// with a number of unknowns in [`METIS_PROBE_UNKNOWNS`].
+fn probes_metis(sv: &Supervariables) -> bool {
+    let n = sv.start.last().copied().unwrap_or(0);
+    FillOrdering::Metis.is_available() && 2 * n < 5 * sv.len() && METIS_PROBE_UNKNOWNS.contains(&n)
 }
 
-#[cfg(not(feature = "metis"))]
-fn metis_permutation(_: &Supervariables) -> Result<Vec<usize>, FemError> {
+/// Block AMD's group permutation, or METIS's where that is much cheaper:
+/// when block AMD's factor costs at least [`METIS_PROBE_MIN_CONSTANT`] ×
+/// g^1.5 (g groups) METIS is computed too and taken if its `group_flops`
+/// are at most [`METIS_MAX_RATIO`] × block AMD's. The group permutation and
+/// the ordering it is.
+fn cheaper_of_metis_and_amd(sv: &Supervariables) -> Result<(Vec<usize>, FillOrdering), FemError> {
+    let amd = amd_order(sv)?;
+    let amd_flops = group_flops(sv, &amd)?;
+    if amd_flops < METIS_PROBE_MIN_CONSTANT * (sv.len() as f64).powf(1.5) {
+        return Ok((amd, FillOrdering::BlockAmd));
+    }
+    let metis = metis_groups(sv)?;
+    Ok(if group_flops(sv, &metis)? <= METIS_MAX_RATIO * amd_flops {
+        (metis, FillOrdering::Metis)
+    } else {
+        (amd, FillOrdering::BlockAmd)
+    })
+}
+
+/// METIS's group permutation (an error without the feature).
+fn metis_groups(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
+    #[cfg(feature = "metis")]
+    return metis_nd::node_nd(sv);
+    #[cfg(not(feature = "metis"))]
     Err(missing_feature(FillOrdering::Metis))
+}
+
+/// [`FillOrdering::Metis`]'s permutation of the unknowns.
+fn metis_permutation(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
+    Ok(sv.expand(&metis_groups(sv)?))
 }
 
 #[cfg(feature = "metis")]
