@@ -430,15 +430,25 @@ impl<T: Real> Half<T> {
         map.clear();
         map.extend((0..nb).map(at));
         if nb * nm * wd <= SMALL_UPDATE {
-            // column by column of the product: axpys of L_d's columns
+            // column by column of the product: axpys of L_d's columns into
+            // a contiguous column (vectorised), then one scattered
+            // subtraction per entry instead of one per column of L_d
+            if temp.len() < nb {
+                temp.resize(nb, T::default());
+            }
             for c in 0..nm {
-                let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
+                let t = &mut temp[c..nb];
+                t.fill(T::default());
                 for q in 0..wd {
-                    let lq = &ld[q * md + wd + p0..][..nb];
-                    let lc = lq[c];
-                    for (&to, l) in map[c..].iter().zip(&lq[c..]) {
-                        col[to] -= l * lc;
+                    let lq = &ld[q * md + wd + p0 + c..][..nb - c];
+                    let lc = lq[0];
+                    for (t, &l) in t.iter_mut().zip(lq) {
+                        *t += l * lc;
                     }
+                }
+                let col = &mut target[(pd[p0 + c] - cols.start) * m..][..m];
+                for (&to, &t) in map[c..].iter().zip(t.iter()) {
+                    col[to] -= t;
                 }
             }
             return;
