@@ -143,8 +143,7 @@ impl FillOrdering {
     /// `Auto` takes METIS instead when its factor is much cheaper
     /// ([`METIS_MAX_RATIO`]).
     pub fn auto_choice(n: usize, groups: usize) -> FillOrdering {
-        let two_d = 2 * n < 5 * groups;
-        if FillOrdering::Metis.is_available() && two_d && n >= METIS_MIN_UNKNOWNS {
+        if FillOrdering::Metis.is_available() && two_d(n, groups) && n >= METIS_MIN_UNKNOWNS {
             FillOrdering::Metis
         } else {
             FillOrdering::BlockAmd
@@ -472,7 +471,13 @@ pub const METIS_PROBE_MIN_CONSTANT: f64 = 12.0;
 /// with a number of unknowns in [`METIS_PROBE_UNKNOWNS`].
 fn probes_metis(sv: &Supervariables) -> bool {
     let n = sv.start.last().copied().unwrap_or(0);
-    FillOrdering::Metis.is_available() && 2 * n < 5 * sv.len() && METIS_PROBE_UNKNOWNS.contains(&n)
+    FillOrdering::Metis.is_available() && two_d(n, sv.len()) && METIS_PROBE_UNKNOWNS.contains(&n)
+}
+
+/// Whether `n` unknowns in `groups` vertex groups are a 2D system: fewer
+/// than 2.5 unknowns per group.
+fn two_d(n: usize, groups: usize) -> bool {
+    2 * n < 5 * groups
 }
 
 /// Block AMD's group permutation, or METIS's where that is much cheaper:
