@@ -622,8 +622,8 @@ projected references are as accurate as the raw one.
 * **Hard cases.** rest (F = I exactly), uniform scale, repeated σ, σ differing by 1e-9, σᵢ+σⱼ ≈ 0 (1e-7 off; ARAP has a genuine pole there), σ = 1e-6, inverted, \
 σ = 1e3, each under random rotations; random F = I + U(−½, ½), ⅛ inverted. Barrier energies skip det F ≤ 0.
 * **Timing.** Ratios are measured interleaved in one run (every round runs each method once over the same batch); absolute times depend on the machine's load. \
-Per solve, the defaults on two threads, on one thread and the autodiff baseline run in interleaved rounds (the order rotating, so each runs first in turn; \
-in the first report run this way camelhead's first two-thread solve took 0.93 s, its later ones 0.76–0.81 s): their times are each one's fastest round, their ratios the median of the per-round ratios. \
+Per solve, the defaults on two threads, on one thread and the autodiff baseline run in interleaved rounds (the order rotating, so each runs first in turn, \
+as a cold first solve is slower than later ones): their times are each one's fastest round, their ratios the median of the per-round ratios. \
 Every other method is one solve.
 * **Solve methods.** *analytic clamp / abs*: fixed filter max(λ, 0) / |λ|. *adaptive*: `FilterPolicy::TrustRegion` (Chen et al. 2024): clamp when the previous \
 step's ρ = actual/predicted decrease satisfies |ρ − 1| < 0.01, abs otherwise. *numeric element projection*: the same solver with each element's raw Hessian projected by \
