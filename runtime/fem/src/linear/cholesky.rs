@@ -47,16 +47,17 @@ fn clear_simd(pool: bool) {
 }
 
 /// [`ThreadPolicy::Split`] splits a factorisation whose estimated flops
-/// ([`CholeskyFactor::factor_flops`] of the plain analysis) reach this; below,
+/// (Σ c² of the unsplit factor: `tree::Tree::total_flops`) reach this; below,
 /// the two-thread overhead (the separator's dense block, joins) does not pay
 /// (docs/benchmarks/ordering.md, "Tree-level parallel factorisation").
 pub const SPLIT_MIN_FLOPS: f64 = 5e7;
 
-use super::ordering::{Coordinates, FillOrdering, permutation};
+use super::ordering::{Coordinates, FillOrdering, Ordered, ordered};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 use precision::Split;
 use threads::ThreadChooser;
+use tree::Tree;
 
 /// How [`CholeskyFactor`] orders and threads its factorisation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -90,17 +91,10 @@ pub enum FactorizeError {
 
 /// Symbolic structure, factor values and scratch for one pattern.
 pub struct CholeskyFactor {
-    symbolic: SymbolicCholesky<usize>,
-    /// The pattern (column pointers, row indices) `symbolic` was computed for.
+    /// The factorisation of the analysed pattern.
+    kind: Kind,
+    /// The pattern (column pointers, row indices) `kind` was analysed for.
     analysed: (Vec<usize>, Vec<usize>),
-    l_values: Vec<f64>,
-    mem: MemBuffer,
-    threads: ThreadChooser,
-    /// The parallelism of the last numeric factorisation (used by the solves).
-    par: Par,
-    /// The two-way split factor ([`ThreadPolicy::Split`]); when present,
-    /// `l_values` is empty and every factorisation and solve goes through it.
-    split: Option<Split>,
     /// As asked (the ordering may be `Auto`; reanalyses resolve it again).
     params: CholeskyParams,
     /// The concrete ordering of the current analysis.
@@ -116,15 +110,26 @@ pub struct CholeskyFactor {
     numeric_factorizations: usize,
 }
 
-/// One symbolic analysis and the storage it sizes.
-struct Analysis {
+/// How the analysed pattern is factorised.
+enum Kind {
+    /// faer's supernodal factorisation of the whole matrix.
+    Plain(Box<Plain>),
+    /// The two-way split factor ([`ThreadPolicy::Split`]): every
+    /// factorisation and solve goes through it.
+    Split(Box<Split>),
+    /// A reanalysis failed: nothing to factorise with until the next one.
+    Missing,
+}
+
+/// faer's symbolic analysis of the whole matrix, the factor values and the
+/// scratch it sizes.
+struct Plain {
     symbolic: SymbolicCholesky<usize>,
     l_values: Vec<f64>,
     mem: MemBuffer,
     threads: ThreadChooser,
-    split: Option<Split>,
-    /// The concrete ordering used.
-    ordering: FillOrdering,
+    /// The parallelism of the last numeric factorisation (used by the solves).
+    par: Par,
 }
 
 /// The split factor when `params` asks for it, the pool has two threads and
@@ -134,53 +139,91 @@ fn split_for(
     params: CholeskyParams,
     symbolic: &SymbolicCholesky<usize>,
 ) -> Result<Option<Split>, FemError> {
-    let eligible = params.threads == ThreadPolicy::Split
-        && rayon::current_num_threads() >= 2
-        && matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_));
-    let plain = if eligible { flops(symbolic) } else { 0.0 };
-    if eligible && plain >= SPLIT_MIN_FLOPS {
-        Split::analyse(pattern, symbolic, params.precision, plain)
-    } else {
-        Ok(None)
+    let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+        return Ok(None);
+    };
+    let plain = flops(symbolic);
+    if !splits(params) || plain < SPLIT_MIN_FLOPS {
+        return Ok(None);
     }
+    let perm = symbolic.perm().map(|p| p.arrays().0);
+    Split::analyse(
+        pattern,
+        perm,
+        &Tree::of_supernodal(sn),
+        params.precision,
+        plain,
+    )
+}
+
+/// Whether `params` and the pool ask for a split factor (if it pays).
+fn splits(params: CholeskyParams) -> bool {
+    params.threads == ThreadPolicy::Split && rayon::current_num_threads() >= 2
+}
+
+/// The split factor read off the elimination tree of the group graph
+/// ([`Tree::of_groups`]) when `params` asks for it and it pays: no
+/// symbolic factorisation of the whole matrix (on the 1M-triangle disk,
+/// faer's took 0.6 s of setup only to find the split).
+fn group_split(
+    pattern: &Pattern,
+    params: CholeskyParams,
+    ordered: &Ordered,
+) -> Result<Option<Split>, FemError> {
+    let Some(groups) = ordered.groups.as_ref().filter(|_| splits(params)) else {
+        return Ok(None);
+    };
+    let tree = Tree::of_groups(&groups.elimination()?);
+    let plain = tree.total_flops();
+    if plain < SPLIT_MIN_FLOPS {
+        return Ok(None);
+    }
+    Split::analyse(
+        pattern,
+        ordered.perm.as_deref(),
+        &tree,
+        params.precision,
+        plain,
+    )
 }
 
 /// Symbolic analysis of the upper-triangular `pattern` with the ordering of
 /// `params`; the factor values and all scratch are allocated here, once per
-/// pattern, sized for the thread policy.
+/// pattern, sized for the thread policy. Where the ordering is by groups
+/// ([`Ordered::groups`]) the split is decided on the group graph's tree and
+/// faer analyses the whole matrix only when it is not split; otherwise
+/// (faer's own AMD) the split is read off faer's supernodal tree.
 fn analysis(
     pattern: &Pattern,
     params: CholeskyParams,
     coords: Option<&[[f64; 3]]>,
-) -> Result<Analysis, FemError> {
+) -> Result<(Kind, FillOrdering), FemError> {
     let n = pattern.n();
     // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
     let a = SymbolicSparseColMatRef::new_checked(n, n, pattern.col_ptr(), None, pattern.row_idx());
-    let (perm, ordering_used) = permutation(pattern, params.ordering, coords)?;
-    let inv = perm
+    let ordered = ordered(pattern, params.ordering, coords)?;
+    if let Some(split) = group_split(pattern, params, &ordered)? {
+        return Ok((Kind::Split(Box::new(split)), ordered.used));
+    }
+    let inv = ordered
+        .perm
         .as_deref()
         .map(ecc_mesh::dissection::inverse_permutation);
-    let ordering = match (&perm, &inv) {
+    let ordering = match (&ordered.perm, &inv) {
         (Some(p), Some(i)) => SymmetricOrdering::Custom(PermRef::new_checked(p, i, n)),
         _ => SymmetricOrdering::Amd,
     };
     let symbolic = factorize_symbolic_cholesky(a, Side::Upper, ordering, symbolic_params())
         .map_err(|e| FemError::Symbolic(format!("{e:?}")))?;
+    if ordered.groups.is_none()
+        && let Some(split) = split_for(pattern, params, &symbolic)?
+    {
+        return Ok((Kind::Split(Box::new(split)), ordered.used));
+    }
     let threads = ThreadChooser::new(
         params.threads,
         matches!(symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
     );
-    let split = split_for(pattern, params, &symbolic)?;
-    if split.is_some() {
-        return Ok(Analysis {
-            symbolic,
-            l_values: Vec::new(),
-            mem: MemBuffer::new(StackReq::EMPTY),
-            threads,
-            split,
-            ordering: ordering_used,
-        });
-    }
     let req = StackReq::any_of(&[Par::Seq, Par::rayon(0)].map(|par| {
         StackReq::any_of(&[
             symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
@@ -191,14 +234,14 @@ fn analysis(
         .map_err(|_| FemError::Symbolic("out of memory for scratch".into()))?;
     let len = symbolic.len_val();
     let l_values = split::zeros(len, &format!("a factor of {len} values"))?;
-    Ok(Analysis {
+    let plain = Plain {
         symbolic,
         l_values,
         mem,
         threads,
-        split,
-        ordering: ordering_used,
-    })
+        par: Par::Seq,
+    };
+    Ok((Kind::Plain(Box::new(plain)), ordered.used))
 }
 
 /// faer's symbolic parameters: always supernodal. faer picks its simplicial
@@ -259,22 +302,10 @@ impl CholeskyFactor {
         params: CholeskyParams,
         coords: Option<Coordinates>,
     ) -> Result<Self, FemError> {
-        let Analysis {
-            symbolic,
-            l_values,
-            mem,
-            threads,
-            split,
-            ordering,
-        } = analysis(pattern, params, coords.as_deref())?;
+        let (kind, ordering) = analysis(pattern, params, coords.as_deref())?;
         Ok(CholeskyFactor {
-            symbolic,
+            kind,
             analysed: structure(pattern),
-            l_values,
-            mem,
-            threads,
-            par: Par::Seq,
-            split,
             params,
             ordering,
             coords,
@@ -292,23 +323,14 @@ impl CholeskyFactor {
 
     /// Redo the symbolic analysis for a new pattern (counted).
     fn reanalyze(&mut self, pattern: &Pattern) -> Result<(), FemError> {
-        // drop the old factor first: the new one may be as large
-        self.split = None;
-        self.l_values = Vec::new();
-        let Analysis {
-            symbolic,
-            l_values,
-            mem,
-            threads,
-            split,
-            ordering,
-        } = analysis(pattern, self.params, self.coords.as_deref())?;
+        // drop the old factor first: the new one may be as large; until an
+        // analysis succeeds there is no pattern to factorise with
+        self.kind = Kind::Missing;
+        self.analysed = (Vec::new(), Vec::new());
+        self.factored = false;
+        let (kind, ordering) = analysis(pattern, self.params, self.coords.as_deref())?;
         self.ordering = ordering;
-        self.split = split;
-        self.symbolic = symbolic;
-        self.threads = threads;
-        self.l_values = l_values;
-        self.mem = mem;
+        self.kind = kind;
         self.analysed = structure(pattern);
         self.factored = false;
         self.symbolic_analyses += 1;
@@ -318,18 +340,20 @@ impl CholeskyFactor {
     /// Number of stored values of L (of both halves and the dense separator
     /// factor for a split factor).
     pub fn factor_nnz(&self) -> usize {
-        match &self.split {
-            Some(s) => s.nnz(),
-            None => self.symbolic.len_val(),
+        match &self.kind {
+            Kind::Plain(p) => p.symbolic.len_val(),
+            Kind::Split(s) => s.nnz(),
+            Kind::Missing => 0,
         }
     }
 
     /// Memory taken by the factor values, in bytes (a mixed split factor's
     /// halves at 4 bytes a value).
     pub fn factor_bytes(&self) -> usize {
-        match &self.split {
-            Some(s) => s.bytes(),
-            None => self.symbolic.len_val() * std::mem::size_of::<f64>(),
+        match &self.kind {
+            Kind::Plain(p) => p.symbolic.len_val() * std::mem::size_of::<f64>(),
+            Kind::Split(s) => s.bytes(),
+            Kind::Missing => 0,
         }
     }
 
@@ -337,7 +361,7 @@ impl CholeskyFactor {
     /// its solves are then accurate to about κ·2⁻²⁴ only, and
     /// [`crate::linear::LinearSystem::solve`] refines them by CG.
     pub fn is_mixed(&self) -> bool {
-        self.split.as_ref().is_some_and(Split::is_mixed)
+        matches!(&self.kind, Kind::Split(s) if s.is_mixed())
     }
 
     /// The precision of the factor now: [`FactorPrecision::Mixed`] for a
@@ -361,12 +385,10 @@ impl CholeskyFactor {
     /// storage, to be factorised again); nothing for any other factor. On an
     /// allocation failure the factor stays as it was.
     pub fn to_double(&mut self) -> Result<(), FemError> {
-        let double = match &self.split {
-            Some(split) => split.double()?,
-            None => None,
-        };
-        if let Some(double) = double {
-            self.split = Some(double);
+        if let Kind::Split(split) = &self.kind
+            && let Some(double) = split.double()?
+        {
+            self.kind = Kind::Split(Box::new(double));
             self.factored = false;
         }
         Ok(())
@@ -379,9 +401,10 @@ impl CholeskyFactor {
     /// separator included) and ≈ k³/3 for the dense L_Σ (k separator
     /// unknowns).
     pub fn factor_flops(&self) -> f64 {
-        match &self.split {
-            Some(s) => s.flops(),
-            None => flops(&self.symbolic),
+        match &self.kind {
+            Kind::Plain(p) => flops(&p.symbolic),
+            Kind::Split(s) => s.flops(),
+            Kind::Missing => 0.0,
         }
     }
 
@@ -390,9 +413,10 @@ impl CholeskyFactor {
     /// threads (the larger half, then L_Σ); `None` when the factorisation is
     /// not split.
     pub fn split(&self) -> Option<(usize, f64)> {
-        self.split
-            .as_ref()
-            .map(|s| (s.separator_len(), s.critical_flops()))
+        match &self.kind {
+            Kind::Split(s) => Some((s.separator_len(), s.critical_flops())),
+            _ => None,
+        }
     }
 
     /// The ordering and thread policy this factor was analysed with, the
@@ -409,19 +433,29 @@ impl CholeskyFactor {
     /// (their `rayon::join`), and the separator's Schur complement and dense
     /// factor; `None` when the factorisation is not split.
     pub fn split_phases(&self) -> Option<[f64; 4]> {
-        self.split.as_ref().map(|s| s.phases())
+        match &self.kind {
+            Kind::Split(s) => Some(s.phases()),
+            _ => None,
+        }
     }
 
     /// Whether the last numeric factorisation (and so the solves) ran on
     /// rayon's threads, as the [`ThreadPolicy`] chose.
     pub fn is_parallel(&self) -> bool {
-        self.split.is_some() || !matches!(self.par, Par::Seq)
+        match &self.kind {
+            Kind::Plain(p) => !matches!(p.par, Par::Seq),
+            Kind::Split(_) => true,
+            Kind::Missing => false,
+        }
     }
 
-    /// Number of supernodes and the widest one (columns), or `None` for a
-    /// simplicial factor.
+    /// Number of supernodes and the widest one (columns) of a plain
+    /// factor, or `None` for a simplicial or split one.
     pub fn supernodes(&self) -> Option<(usize, usize)> {
-        match self.symbolic.raw() {
+        let Kind::Plain(p) = &self.kind else {
+            return None;
+        };
+        match p.symbolic.raw() {
             SymbolicCholeskyRaw::Simplicial(_) => None,
             SymbolicCholeskyRaw::Supernodal(s) => {
                 let widest = (0..s.n_supernodes())
@@ -433,9 +467,13 @@ impl CholeskyFactor {
         }
     }
 
-    /// Whether faer chose the supernodal variant.
+    /// Whether the factor is supernodal (a split factor's halves always are).
     pub fn is_supernodal(&self) -> bool {
-        matches!(self.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_))
+        match &self.kind {
+            Kind::Plain(p) => matches!(p.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)),
+            Kind::Split(_) => true,
+            Kind::Missing => false,
+        }
     }
 
     /// How many symbolic analyses this factor has done: 1 from
@@ -457,34 +495,69 @@ impl CholeskyFactor {
         if !self.is_for(pattern) {
             self.reanalyze(pattern).map_err(FactorizeError::Symbolic)?;
         }
-        let n = pattern.n();
         self.numeric_factorizations += 1;
         self.factored = false;
-        if let Some(split) = &mut self.split {
-            let mut result = split.factorize(values);
-            if result.is_err() && split.is_mixed() && !self.indefinite_seen {
-                // single precision broke down: the same matrix in double
-                // tells a breakdown of precision (double succeeds: stay
-                // double) from an indefinite matrix (double fails too: stay
-                // mixed, and report later breakdowns as they are; module
-                // docs of `precision`)
-                if let Some(mut double) = split.double().map_err(FactorizeError::Symbolic)? {
-                    result = double.factorize(values);
-                    match result {
-                        Ok(()) => *split = double,
-                        Err(_) => self.indefinite_seen = true,
-                    }
-                }
-            }
-            clear_simd(true);
-            result.map_err(|p| {
-                FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot: p.0 })
-            })?;
-            self.factored = true;
-            return Ok(());
+        let indefinite_seen = &mut self.indefinite_seen;
+        match &mut self.kind {
+            Kind::Plain(p) => p.factorize(pattern, values),
+            Kind::Split(split) => factorize_split(split, values, indefinite_seen),
+            Kind::Missing => Err(FactorizeError::Symbolic(FemError::Symbolic(
+                "no symbolic analysis to factorise with (the last one failed)".into(),
+            ))),
+        }?;
+        self.factored = true;
+        Ok(())
+    }
+
+    /// Solve A x = rhs in place with the last successful factorisation.
+    /// Returns `false` (leaving `rhs` untouched) if there is none.
+    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> bool {
+        if !self.factored {
+            return false;
         }
-        // SAFETY: `is_for` above: this exact pattern was validated by
-        // `new_checked` in its symbolic analysis.
+        match &mut self.kind {
+            Kind::Plain(p) => p.solve_in_place(rhs),
+            Kind::Split(split) => {
+                split.solve_in_place(rhs);
+                clear_simd(true);
+            }
+            Kind::Missing => return false,
+        }
+        true
+    }
+}
+
+/// Numeric factorisation of a split factor: a single-precision breakdown
+/// is retried in double once per factor (module docs of `precision`).
+fn factorize_split(
+    split: &mut Split,
+    values: &[f64],
+    indefinite_seen: &mut bool,
+) -> Result<(), FactorizeError> {
+    let mut result = split.factorize(values);
+    if result.is_err() && split.is_mixed() && !*indefinite_seen {
+        // single precision broke down: the same matrix in double tells a
+        // breakdown of precision (double succeeds: stay double) from an
+        // indefinite matrix (double fails too: stay mixed, and report later
+        // breakdowns as they are)
+        if let Some(mut double) = split.double().map_err(FactorizeError::Symbolic)? {
+            result = double.factorize(values);
+            match result {
+                Ok(()) => *split = double,
+                Err(_) => *indefinite_seen = true,
+            }
+        }
+    }
+    clear_simd(true);
+    result.map_err(|p| FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot: p.0 }))
+}
+
+impl Plain {
+    /// faer's numeric LLᵀ of `values` on the analysed `pattern`.
+    fn factorize(&mut self, pattern: &Pattern, values: &[f64]) -> Result<(), FactorizeError> {
+        let n = pattern.n();
+        // SAFETY: the caller checked `is_for`: this exact pattern was
+        // validated by `new_checked` in its symbolic analysis.
         let sym = unsafe {
             SymbolicSparseColMatRef::new_unchecked(n, n, pattern.col_ptr(), None, pattern.row_idx())
         };
@@ -505,7 +578,6 @@ impl CholeskyFactor {
         match result {
             Ok(_) => {
                 self.threads.record(self.par, start.elapsed().as_secs_f64());
-                self.factored = true;
                 Ok(())
             }
             Err(LltError::NonPositivePivot { index }) => {
@@ -516,17 +588,8 @@ impl CholeskyFactor {
         }
     }
 
-    /// Solve A x = rhs in place with the last successful factorisation.
-    /// Returns `false` (leaving `rhs` untouched) if there is none.
-    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> bool {
-        if !self.factored {
-            return false;
-        }
-        if let Some(split) = &mut self.split {
-            split.solve_in_place(rhs);
-            clear_simd(true);
-            return true;
-        }
+    /// Solve with the last numeric factor.
+    fn solve_in_place(&mut self, rhs: &mut [f64]) {
         let n = rhs.len();
         let llt = LltRef::<'_, usize, f64>::new(&self.symbolic, &self.l_values);
         let stack = MemStack::new(&mut self.mem);
@@ -537,7 +600,6 @@ impl CholeskyFactor {
             stack,
         );
         clear_simd(!matches!(self.par, Par::Seq));
-        true
     }
 }
 
@@ -733,7 +795,7 @@ mod tests {
                 d.factorize(&p, &v).unwrap();
                 // the default never uses faer's parallel kernels: it splits
                 // (this grid is large enough) or runs on one thread
-                assert!(matches!(d.par, Par::Seq) && d.split().is_some());
+                assert!(matches!(d.kind, Kind::Split(_)) && d.split().is_some());
             }
         });
     }
@@ -860,6 +922,100 @@ mod tests {
             critical >= dense && critical <= 0.8 * plain,
             "{critical:e} vs {plain:e}"
         );
+    }
+
+    /// The tree read off the group graph ([`Tree::of_groups`]) against
+    /// faer's symbolic analysis of the whole matrix in the same order with
+    /// fundamental supernodes (no relaxation): the same flops, Σ c² over
+    /// the scalar columns, and a tree whose nodes tile the columns
+    /// bottom-up.
+    #[test]
+    fn the_group_tree_has_the_scalar_factors_flops() {
+        use crate::linear::ordering::tests::{grid, grid_coords};
+        for (p, coords, o) in [
+            (grid(30, 20, 2), None, FillOrdering::BlockAmd),
+            (grid(12, 9, 3), None, FillOrdering::BlockAmd),
+            (
+                grid(40, 40, 2),
+                Some(grid_coords(40, 40, 2)),
+                FillOrdering::Geometric,
+            ),
+        ] {
+            let ordered = ordered(&p, o, coords.as_deref()).unwrap();
+            let elimination = ordered.groups.as_ref().unwrap().elimination().unwrap();
+            let tree = Tree::of_groups(&elimination);
+            let n = p.n();
+            let perm = ordered.perm.unwrap();
+            let inv = ecc_mesh::dissection::inverse_permutation(&perm);
+            let a = SymbolicSparseColMatRef::new_checked(n, n, p.col_ptr(), None, p.row_idx());
+            let mut params = symbolic_params();
+            params.supernodal_params.relax = None;
+            let ordering = SymmetricOrdering::Custom(PermRef::new_checked(&perm, &inv, n));
+            let symbolic = factorize_symbolic_cholesky(a, Side::Upper, ordering, params).unwrap();
+            let (want, got) = (flops(&symbolic), tree.total_flops());
+            assert!(
+                (want - got).abs() <= 1e-12 * want,
+                "{o:?}: {got:e} vs faer {want:e}"
+            );
+            assert_eq!(tree.begin[0], 0);
+            assert_eq!(*tree.end.last().unwrap(), n);
+            for k in 0..tree.parent.len() {
+                assert!(tree.begin[k] < tree.end[k]);
+                assert!(k == 0 || tree.begin[k] == tree.end[k - 1]);
+                assert!(tree.parent[k] == usize::MAX || tree.parent[k] > k);
+            }
+            assert!(
+                tree.parent.len() < elimination.sizes.len(),
+                "chains are merged"
+            );
+        }
+    }
+
+    /// Every ordering splits: those by groups from the group graph's tree,
+    /// faer's own AMD from its supernodal tree; the solves agree.
+    #[test]
+    fn every_ordering_splits_and_solves() {
+        let p = crate::linear::ordering::tests::grid(100, 100, 2);
+        let coords = crate::linear::ordering::tests::grid_coords(100, 100, 2);
+        let v = dominant(&p);
+        let b: Vec<f64> = (0..p.n()).map(|i| (0.3 * i as f64).cos()).collect();
+        let mut reference = CholeskyFactor::analyze_with(
+            &p,
+            CholeskyParams {
+                threads: ThreadPolicy::Sequential,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        reference.factorize(&p, &v).unwrap();
+        let mut want = b.clone();
+        assert!(reference.solve_in_place(&mut want));
+        pool(2).install(|| {
+            for ordering in [
+                FillOrdering::Amd,
+                FillOrdering::BlockAmd,
+                FillOrdering::Geometric,
+            ] {
+                let params = CholeskyParams {
+                    ordering,
+                    threads: ThreadPolicy::Split,
+                    precision: FactorPrecision::Double,
+                };
+                let mut f =
+                    CholeskyFactor::analyze_at(&p, params, Some(coords.clone().into())).unwrap();
+                assert!(f.split().is_some(), "{ordering:?}");
+                assert!(f.is_supernodal() && f.supernodes().is_none());
+                f.factorize(&p, &v).unwrap();
+                let mut x = b.clone();
+                assert!(f.solve_in_place(&mut x));
+                let err = x
+                    .iter()
+                    .zip(&want)
+                    .map(|(a, e)| (a - e).abs())
+                    .fold(0.0, f64::max);
+                assert!(err < 1e-10, "{ordering:?}: {err:e}");
+            }
+        });
     }
 
     #[test]

@@ -315,35 +315,118 @@ fn amd_order(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
 /// the symbolic analysis), and the concrete ordering used
 /// ([`FillOrdering::Auto`] resolved). `coords` (one per unknown) is needed by
 /// [`FillOrdering::Geometric`] only.
+#[cfg(test)]
 pub(crate) fn permutation(
     pattern: &Pattern,
     ordering: FillOrdering,
     coords: Option<&[[f64; 3]]>,
 ) -> Result<(Option<Vec<usize>>, FillOrdering), FemError> {
+    let o = ordered(pattern, ordering, coords)?;
+    Ok((o.perm, o.used))
+}
+
+/// A fill-reducing ordering of a pattern ([`ordered`]).
+pub(crate) struct Ordered {
+    /// `perm[new] = old`, or `None` for [`FillOrdering::Amd`] (computed
+    /// inside faer's symbolic analysis).
+    pub perm: Option<Vec<usize>>,
+    /// The concrete ordering used ([`FillOrdering::Auto`] resolved).
+    pub used: FillOrdering,
+    /// The groups and their order `perm` expands (every ordering but
+    /// [`FillOrdering::Amd`]).
+    pub groups: Option<GroupOrder>,
+}
+
+/// Supervariables in a fill-reducing order: what the split factor's tree is
+/// read from without a symbolic factorisation of the scalar matrix.
+pub(crate) struct GroupOrder {
+    sv: Supervariables,
+    /// `gperm[new] = old group`.
+    gperm: Vec<usize>,
+}
+
+impl GroupOrder {
+    /// The elimination of the group graph in this order.
+    pub(crate) fn elimination(&self) -> Result<GroupElimination, FemError> {
+        let (etree, counts) = group_elimination(&self.sv, &self.gperm)?;
+        let sizes = self
+            .gperm
+            .iter()
+            .map(|&g| self.sv.start[g + 1] - self.sv.start[g])
+            .collect();
+        Ok(GroupElimination {
+            etree,
+            counts,
+            sizes,
+        })
+    }
+}
+
+/// The Cholesky factor of the group graph in a [`GroupOrder`], all indexed
+/// by new position.
+pub(crate) struct GroupElimination {
+    /// Elimination tree (`-1` for a root).
+    pub etree: Vec<isize>,
+    /// Column counts, diagonal included.
+    pub counts: Vec<usize>,
+    /// Unknowns of each group.
+    pub sizes: Vec<usize>,
+}
+
+/// [`permutation`] with the groups it expands.
+pub(crate) fn ordered(
+    pattern: &Pattern,
+    ordering: FillOrdering,
+    coords: Option<&[[f64; 3]]>,
+) -> Result<Ordered, FemError> {
     if ordering == FillOrdering::Amd {
-        return Ok((None, ordering));
+        return Ok(Ordered {
+            perm: None,
+            used: ordering,
+            groups: None,
+        });
     }
     let sv = Supervariables::of(pattern);
+    let (gperm, used) = group_permutation(&sv, pattern.n(), ordering, coords)?;
+    Ok(Ordered {
+        perm: Some(sv.expand(&gperm)),
+        used,
+        groups: Some(GroupOrder { sv, gperm }),
+    })
+}
+
+/// The group permutation of [`ordered`] (any ordering but
+/// [`FillOrdering::Amd`]) and the concrete ordering used.
+fn group_permutation(
+    sv: &Supervariables,
+    n: usize,
+    ordering: FillOrdering,
+    coords: Option<&[[f64; 3]]>,
+) -> Result<(Vec<usize>, FillOrdering), FemError> {
     let used = match ordering {
-        FillOrdering::Auto => FillOrdering::auto_choice(pattern.n(), sv.len()),
+        FillOrdering::Auto => FillOrdering::auto_choice(n, sv.len()),
         o => o,
     };
     if ordering == FillOrdering::Auto
         && used == FillOrdering::Metis
-        && let Some(gperm) = flat_geometric(&sv, pattern.n(), coords, GEOMETRIC_MAX_RATIO)?
+        && let Some(gperm) = flat_geometric(sv, n, coords, GEOMETRIC_MAX_RATIO)?
     {
-        return Ok((Some(sv.expand(&gperm)), FillOrdering::Geometric));
+        return Ok((gperm, FillOrdering::Geometric));
     }
-    if ordering == FillOrdering::Auto && used == FillOrdering::BlockAmd && probes_metis(&sv) {
-        let (gperm, chosen) = cheaper_of_metis_and_amd(&sv)?;
-        return Ok((Some(sv.expand(&gperm)), chosen));
+    if ordering == FillOrdering::Auto && used == FillOrdering::BlockAmd && probes_metis(sv) {
+        return cheaper_of_metis_and_amd(sv);
     }
-    let perm = match used {
-        FillOrdering::Metis => metis_permutation(&sv)?,
-        FillOrdering::Geometric => geometric_permutation(&sv, pattern.n(), coords)?,
-        _ => sv.expand(&amd_order(&sv)?),
+    let gperm = match used {
+        FillOrdering::Metis => metis_groups(sv)?,
+        FillOrdering::Geometric => {
+            let coords = coords
+                .filter(|c| c.len() == n)
+                .ok_or_else(missing_positions)?;
+            geometric_groups(sv, coords)
+        }
+        _ => amd_order(sv)?,
     };
-    Ok((Some(perm), used))
+    Ok((gperm, used))
 }
 
 /// The error of [`FillOrdering::Geometric`] without a position per unknown.
@@ -363,18 +446,6 @@ fn missing_feature(ordering: FillOrdering) -> FemError {
 
 /// Geometric nested dissection of the group graph, each group at the
 /// position of its first unknown.
-fn geometric_permutation(
-    sv: &Supervariables,
-    n: usize,
-    coords: Option<&[[f64; 3]]>,
-) -> Result<Vec<usize>, FemError> {
-    let coords = coords
-        .filter(|c| c.len() == n)
-        .ok_or_else(missing_positions)?;
-    Ok(sv.expand(&geometric_groups(sv, coords)))
-}
-
-/// The group permutation of [`geometric_permutation`].
 fn geometric_groups(sv: &Supervariables, coords: &[[f64; 3]]) -> Vec<usize> {
     let pos: Vec<[f64; 3]> = sv.start[..sv.len()].iter().map(|&u| coords[u]).collect();
     let graph = ecc_mesh::dissection::Graph {
@@ -422,6 +493,16 @@ fn flat_geometric(
 /// flops measure of the factor with one unknown per group, from faer's
 /// elimination tree and column counts (no symbolic factorisation).
 fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
+    let (_, counts) = group_elimination(sv, gperm)?;
+    Ok(counts.iter().map(|&c| (c as f64).powi(2)).sum())
+}
+
+/// faer's elimination tree (`-1` for a root) and column counts (diagonal
+/// included) of the group graph's Cholesky factor in the order `gperm`.
+fn group_elimination(
+    sv: &Supervariables,
+    gperm: &[usize],
+) -> Result<(Vec<isize>, Vec<usize>), FemError> {
     let ng = sv.len();
     let (cp, ri) = sv.upper(gperm);
     let a = SymbolicSparseColMatRef::new_checked(ng, ng, &cp, None, &ri);
@@ -431,7 +512,7 @@ fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
     let mut mem = MemBuffer::try_new(req)
         .map_err(|_| FemError::Symbolic("out of memory for the column counts".into()))?;
     simplicial::prefactorize_symbolic_cholesky(&mut etree, &mut counts, a, MemStack::new(&mut mem));
-    Ok(counts.iter().map(|&c| (c as f64).powi(2)).sum())
+    Ok((etree, counts))
 }
 
 /// The 2D systems (unknowns) for which [`FillOrdering::Auto`] may compute
@@ -505,11 +586,6 @@ fn metis_groups(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
     return metis_nd::node_nd(sv);
     #[cfg(not(feature = "metis"))]
     Err(missing_feature(FillOrdering::Metis))
-}
-
-/// [`FillOrdering::Metis`]'s permutation of the unknowns.
-fn metis_permutation(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
-    Ok(sv.expand(&metis_groups(sv)?))
 }
 
 #[cfg(feature = "metis")]

@@ -36,9 +36,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::split::{SplitFactor, SplitPivot};
+use super::tree::Tree;
 use crate::error::FemError;
 use crate::pattern::Pattern;
-use faer::sparse::linalg::cholesky::SymbolicCholesky;
 
 /// Scalar of the split factor's halves. The names (`"auto"`, `"mixed"`,
 /// `"double"`) are stable.
@@ -94,19 +94,20 @@ macro_rules! each {
 }
 
 impl Split {
-    /// [`SplitFactor::analyse`] in the scalar of `precision` (resolved for
-    /// the plain factor's `flops`).
+    /// [`SplitFactor::analyse_tree`] in the scalar of `precision` (resolved
+    /// for the plain factor's `flops`).
     pub(super) fn analyse(
         pattern: &Pattern,
-        symbolic: &SymbolicCholesky<usize>,
+        perm: Option<&[usize]>,
+        tree: &Tree,
         precision: FactorPrecision,
         flops: f64,
     ) -> Result<Option<Self>, FemError> {
         Ok(match precision.resolve(flops) {
             FactorPrecision::Mixed => {
-                SplitFactor::analyse(pattern, symbolic, false)?.map(Split::Mixed)
+                SplitFactor::analyse_tree(pattern, perm, tree, false)?.map(Split::Mixed)
             }
-            _ => SplitFactor::analyse(pattern, symbolic, false)?.map(Split::Double),
+            _ => SplitFactor::analyse_tree(pattern, perm, tree, false)?.map(Split::Double),
         })
     }
 

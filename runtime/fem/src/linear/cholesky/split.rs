@@ -12,8 +12,8 @@
 //! ```
 //!
 //! **Factorisation.** Bᵢ = A[Pᵢ∪S, Pᵢ∪S] (a principal submatrix of an SPD
-//! matrix, so SPD), with Pᵢ in the fill-reducing order of the plain
-//! analysis and S last, has the Cholesky factor
+//! matrix, so SPD), with Pᵢ in the fill-reducing order and S last, has the
+//! Cholesky factor
 //!
 //! ```text
 //! Bᵢ = ⎡ Aᵢᵢ  AᵢS ⎤ = ⎡ Lᵢ    0       ⎤ ⎡ Lᵢᵀ  L_Siᵀ    ⎤            (2)
@@ -70,12 +70,11 @@ use faer::linalg::cholesky::llt::factor::{LltError, cholesky_in_place, cholesky_
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{MatMut, MatRef, Par};
 
 use super::half::Half;
 use super::real::Real;
-use super::tree::{Part, split};
+use super::tree::{Part, Tree, split};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 
@@ -172,22 +171,38 @@ impl<T: Real> SplitFactor<T> {
     /// `pattern` ([`super::tree`]) and analyse both halves; `None` if the
     /// plain factor is simplicial or (unless `force`) no split is estimated
     /// to pay.
+    #[cfg(test)]
     pub(crate) fn analyse(
         pattern: &Pattern,
-        symbolic: &SymbolicCholesky<usize>,
+        symbolic: &faer::sparse::linalg::cholesky::SymbolicCholesky<usize>,
         force: bool,
     ) -> Result<Option<Self>, FemError> {
+        use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
         let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
             return Ok(None);
         };
-        let Some(cut) = split(sn, force) else {
+        let perm = symbolic.perm().map(|p| p.arrays().0);
+        Self::analyse_tree(pattern, perm, &Tree::of_supernodal(sn), force)
+    }
+
+    /// Split `tree`, the supernodal elimination tree of `pattern` in the
+    /// fill-reducing order `perm` (`perm[new] = old`, `None`: identity),
+    /// and analyse both halves; `None` if (unless `force`) no split is
+    /// estimated to pay.
+    pub(crate) fn analyse_tree(
+        pattern: &Pattern,
+        perm: Option<&[usize]>,
+        tree: &Tree,
+        force: bool,
+    ) -> Result<Option<Self>, FemError> {
+        let Some(cut) = split(tree, force) else {
             return Ok(None);
         };
-        let old = |new: usize| symbolic.perm().map_or(new, |p| p.arrays().0[new]);
+        let old = |new: usize| perm.map_or(new, |p| p[new]);
         let columns = |part: Part| -> Vec<usize> {
-            (0..sn.n_supernodes())
+            (0..cut.len())
                 .filter(|&k| cut[k] == part)
-                .flat_map(|k| sn.supernode_begin()[k]..sn.supernode_end()[k])
+                .flat_map(|k| tree.begin[k]..tree.end[k])
                 .map(old)
                 .collect()
         };

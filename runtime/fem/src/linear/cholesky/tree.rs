@@ -1,5 +1,9 @@
 //! The vertex separator of the split factorisation ([`super::split`]), read
-//! off the supernodal elimination tree of the plain symbolic analysis.
+//! off a supernodal elimination tree of A ([`Tree`]): that of the group
+//! graph when the ordering is by groups (vertex blocks: [`Tree::of_groups`],
+//! from faer's elimination tree and column counts, no symbolic
+//! factorisation of A), else that of faer's plain symbolic analysis
+//! ([`Tree::of_supernodal`]).
 //!
 //! In the factor L of A (fill-reducing order, supernodal), the rows of a
 //! supernode's columns are its own columns and those of its ancestors, so
@@ -31,6 +35,8 @@
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
+use crate::linear::ordering::GroupElimination;
+
 /// Weight of k³ in the estimated critical path (see the module docs).
 const DENSE_WEIGHT: f64 = 1.0 / 3.0;
 
@@ -58,22 +64,107 @@ pub(crate) enum Part {
     Separator,
 }
 
-/// Flops Σ c² of supernode `s` (width w, r off-diagonal rows).
-fn node_flops(s: &SymbolicSupernodalCholesky<usize>, k: usize) -> f64 {
-    let w = s.supernode_end()[k] - s.supernode_begin()[k];
-    let r = s.supernode(k).pattern().len();
-    (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum()
+/// An elimination tree of supernodes, read by [`split`]: node `k` holds the
+/// columns `begin[k]..end[k]` of the fill-reducing order, costs `flops[k]`
+/// (Σ c² over its columns) and has the parent `parent[k] > k`
+/// (`usize::MAX` for a root), so ascending `k` is bottom-up.
+pub(crate) struct Tree {
+    pub parent: Vec<usize>,
+    pub flops: Vec<f64>,
+    pub begin: Vec<usize>,
+    pub end: Vec<usize>,
 }
 
-/// Parent supernode of each supernode (`usize::MAX` for a root).
-fn parents(s: &SymbolicSupernodalCholesky<usize>) -> Vec<usize> {
-    let ends = s.supernode_end();
-    (0..s.n_supernodes())
-        .map(|k| match s.supernode(k).pattern().iter().min() {
-            Some(&row) => ends.partition_point(|&e| e <= row),
-            None => usize::MAX,
-        })
-        .collect()
+impl Tree {
+    /// The supernodes of faer's plain symbolic analysis.
+    pub(crate) fn of_supernodal(s: &SymbolicSupernodalCholesky<usize>) -> Tree {
+        let n = s.n_supernodes();
+        let (begin, end) = (s.supernode_begin(), s.supernode_end());
+        let ends = end;
+        let parent = (0..n)
+            .map(|k| match s.supernode(k).pattern().iter().min() {
+                Some(&row) => ends.partition_point(|&e| e <= row),
+                None => usize::MAX,
+            })
+            .collect();
+        let flops = (0..n)
+            .map(|k| column_flops(end[k] - begin[k], s.supernode(k).pattern().len()))
+            .collect();
+        Tree {
+            parent,
+            flops,
+            begin: begin[..n].to_vec(),
+            end: end[..n].to_vec(),
+        }
+    }
+
+    /// The tree of the scalar factor from the elimination tree `etree`
+    /// (`-1` for a root) and column counts `counts` (diagonal included) of
+    /// the *group* graph in the fill-reducing order, group `j` holding
+    /// `sizes[j]` consecutive unknowns ([`GroupElimination`]): no symbolic
+    /// factorisation of the scalar matrix. Group `j`'s unknowns form a
+    /// dense diagonal block whose
+    /// columns have `sizes[j]·counts[j] − i` entries (i = 0, 1, …; exact
+    /// when all groups have one size, as the vertex blocks of a mesh do),
+    /// and a group joins the next one's node when that is its parent and
+    /// its only child (a chain gains nothing from being split column by
+    /// column: [`split`] would only walk down it).
+    pub(crate) fn of_groups(groups: &GroupElimination) -> Tree {
+        let (etree, counts, sizes) = (&groups.etree, &groups.counts, &groups.sizes);
+        let ng = etree.len();
+        let mut children = vec![0u32; ng];
+        for &p in etree {
+            if p >= 0 {
+                children[p as usize] += 1;
+            }
+        }
+        let mut tree = Tree {
+            parent: Vec::new(),
+            flops: Vec::new(),
+            begin: Vec::new(),
+            end: Vec::new(),
+        };
+        // node of each group
+        let mut node = vec![0usize; ng];
+        let mut col = 0;
+        for j in 0..ng {
+            let chained = j > 0 && etree[j - 1] == j as isize && children[j] == 1;
+            if !chained {
+                tree.begin.push(col);
+                tree.end.push(col);
+                tree.flops.push(0.0);
+            }
+            let k = tree.begin.len() - 1;
+            node[j] = k;
+            let b = sizes[j];
+            tree.flops[k] += column_flops(b, b * (counts[j] - 1));
+            col += b;
+            tree.end[k] = col;
+        }
+        // a node's parent: the node of its last group's parent
+        tree.parent = vec![usize::MAX; tree.begin.len()];
+        for j in 0..ng {
+            if etree[j] >= 0 && node[etree[j] as usize] != node[j] {
+                tree.parent[node[j]] = node[etree[j] as usize];
+            }
+        }
+        tree
+    }
+
+    fn len(&self) -> usize {
+        self.parent.len()
+    }
+
+    /// Σ c² over all columns: the plain factorisation's flops.
+    pub(crate) fn total_flops(&self) -> f64 {
+        self.flops.iter().sum()
+    }
+}
+
+/// Σ c² over the `w` columns of a dense diagonal block with `r` rows
+/// below it: column i has c = w − i + r entries.
+fn column_flops(w: usize, r: usize) -> f64 {
+    (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum()
 }
 
 /// Longest-processing-time split of `forest` (subtree roots) by `weight`:
@@ -97,10 +188,10 @@ fn two_bins(forest: &[usize], weight: &[f64]) -> (Vec<(usize, Part)>, [f64; 2]) 
 /// least estimated critical path, or `None` when one half would be empty or
 /// (unless `force`) its critical path is above [`MAX_CRITICAL_RATIO`] of the
 /// plain factorisation's flops.
-pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Option<Vec<Part>> {
-    let n = s.n_supernodes();
-    let parent = parents(s);
-    let mut subtree: Vec<f64> = (0..n).map(|k| node_flops(s, k)).collect();
+pub(crate) fn split(tree: &Tree, force: bool) -> Option<Vec<Part>> {
+    let n = tree.len();
+    let parent = &tree.parent;
+    let mut subtree = tree.flops.clone();
     let mut children = vec![Vec::new(); n];
     for k in 0..n {
         // a parent's columns follow its children's: ascending k is bottom-up
@@ -140,7 +231,7 @@ pub(crate) fn split(s: &SymbolicSupernodalCholesky<usize>, force: bool) -> Optio
         forest.swap_remove(at);
         forest.extend_from_slice(&children[heaviest]);
         separator.push(heaviest);
-        k_cols += s.supernode_end()[heaviest] - s.supernode_begin()[heaviest];
+        k_cols += tree.end[heaviest] - tree.begin[heaviest];
     }
     let (critical, separator, assigned) = best?;
     if critical > MAX_CRITICAL_RATIO * total && !force {
