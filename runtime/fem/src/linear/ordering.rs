@@ -343,12 +343,18 @@ pub(crate) struct GroupOrder {
     sv: Supervariables,
     /// `gperm[new] = old group`.
     gperm: Vec<usize>,
+    /// The group graph's elimination in this order where choosing the
+    /// order computed it.
+    elimination: Option<Elimination>,
 }
 
 impl GroupOrder {
     /// The elimination of the group graph in this order.
     pub(crate) fn elimination(&self) -> Result<GroupElimination, FemError> {
-        let (etree, counts) = group_elimination(&self.sv, &self.gperm)?;
+        let (etree, counts) = match &self.elimination {
+            Some(e) => e.clone(),
+            None => group_elimination(&self.sv, &self.gperm)?,
+        };
         let sizes = self
             .gperm
             .iter()
@@ -387,11 +393,15 @@ pub(crate) fn ordered(
         });
     }
     let sv = Supervariables::of(pattern);
-    let (gperm, used) = group_permutation(&sv, pattern.n(), ordering, coords)?;
+    let (gperm, used, elimination) = group_permutation(&sv, pattern.n(), ordering, coords)?;
     Ok(Ordered {
         perm: Some(sv.expand(&gperm)),
         used,
-        groups: Some(GroupOrder { sv, gperm }),
+        groups: Some(GroupOrder {
+            sv,
+            gperm,
+            elimination,
+        }),
     })
 }
 
@@ -402,19 +412,20 @@ fn group_permutation(
     n: usize,
     ordering: FillOrdering,
     coords: Option<&[[f64; 3]]>,
-) -> Result<(Vec<usize>, FillOrdering), FemError> {
+) -> Result<(Vec<usize>, FillOrdering, Option<Elimination>), FemError> {
     let used = match ordering {
         FillOrdering::Auto => FillOrdering::auto_choice(n, sv.len()),
         o => o,
     };
     if ordering == FillOrdering::Auto
         && used == FillOrdering::Metis
-        && let Some(gperm) = flat_geometric(sv, n, coords, GEOMETRIC_MAX_RATIO)?
+        && let Some((gperm, elimination)) = flat_geometric(sv, n, coords, GEOMETRIC_MAX_RATIO)?
     {
-        return Ok((gperm, FillOrdering::Geometric));
+        return Ok((gperm, FillOrdering::Geometric, Some(elimination)));
     }
     if ordering == FillOrdering::Auto && used == FillOrdering::BlockAmd && probes_metis(sv) {
-        return cheaper_of_metis_and_amd(sv);
+        let (gperm, used) = cheaper_of_metis_and_amd(sv)?;
+        return Ok((gperm, used, None));
     }
     let gperm = match used {
         FillOrdering::Metis => metis_groups(sv)?,
@@ -426,7 +437,7 @@ fn group_permutation(
         }
         _ => amd_order(sv)?,
     };
-    Ok((gperm, used))
+    Ok((gperm, used, None))
 }
 
 /// The error of [`FillOrdering::Geometric`] without a position per unknown.
@@ -479,13 +490,20 @@ fn flat_geometric(
     n: usize,
     coords: Option<&[[f64; 3]]>,
     max_ratio: f64,
-) -> Result<Option<Vec<usize>>, FemError> {
+) -> Result<Option<(Vec<usize>, Elimination)>, FemError> {
     let Some(coords) = coords.filter(|c| c.len() == n) else {
         return Ok(None);
     };
-    let (geometric, amd) = rayon::join(|| geometric_groups(sv, coords), || amd_order(sv));
-    let ratio = group_flops(sv, &geometric)? / group_flops(sv, &amd?)?;
-    Ok((ratio <= max_ratio).then_some(geometric))
+    let (geometric, amd) = rayon::join(
+        || {
+            let g = geometric_groups(sv, coords);
+            group_elimination(sv, &g).map(|e| (g, e))
+        },
+        || group_flops(sv, &amd_order(sv)?),
+    );
+    let (geometric, elimination) = geometric?;
+    let ratio = flops_of(&elimination.1) / amd?;
+    Ok((ratio <= max_ratio).then_some((geometric, elimination)))
 }
 
 /// Σ c² over the columns c of the Cholesky factor of the group graph
@@ -493,16 +511,21 @@ fn flat_geometric(
 /// flops measure of the factor with one unknown per group, from faer's
 /// elimination tree and column counts (no symbolic factorisation).
 fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
-    let (_, counts) = group_elimination(sv, gperm)?;
-    Ok(counts.iter().map(|&c| (c as f64).powi(2)).sum())
+    Ok(flops_of(&group_elimination(sv, gperm)?.1))
 }
 
-/// faer's elimination tree (`-1` for a root) and column counts (diagonal
-/// included) of the group graph's Cholesky factor in the order `gperm`.
-fn group_elimination(
-    sv: &Supervariables,
-    gperm: &[usize],
-) -> Result<(Vec<isize>, Vec<usize>), FemError> {
+/// Σ c² over column counts.
+fn flops_of(counts: &[usize]) -> f64 {
+    counts.iter().map(|&c| (c as f64).powi(2)).sum()
+}
+
+/// An elimination tree (`-1` for a root) and its column counts (diagonal
+/// included).
+type Elimination = (Vec<isize>, Vec<usize>);
+
+/// faer's [`Elimination`] of the group graph's Cholesky factor in the order
+/// `gperm`.
+fn group_elimination(sv: &Supervariables, gperm: &[usize]) -> Result<Elimination, FemError> {
     let ng = sv.len();
     let (cp, ri) = sv.upper(gperm);
     let a = SymbolicSparseColMatRef::new_checked(ng, ng, &cp, None, &ri);
@@ -846,8 +869,9 @@ pub(crate) mod tests {
         let sv = Supervariables::of(&p);
         let n = p.n();
         let flat = grid_coords(nx, nx, dim);
-        let got = flat_geometric(&sv, n, Some(&flat), 1.5).unwrap().unwrap();
+        let (got, elimination) = flat_geometric(&sv, n, Some(&flat), 1.5).unwrap().unwrap();
         assert_eq!(got, geometric_groups(&sv, &flat));
+        assert_eq!(elimination, group_elimination(&sv, &got).unwrap());
         assert!(flat_geometric(&sv, n, Some(&flat), 0.9).unwrap().is_none());
         let rolled = rolled_coords(nx, nx, dim);
         assert!(

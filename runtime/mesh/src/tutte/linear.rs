@@ -56,14 +56,14 @@ pub(super) fn assemble(
     m: usize,
 ) -> Result<System, TutteError> {
     let mut rhs = Mat::<f64>::zeros(m, 2);
-    let mut count = vec![0usize; m + 1];
+    // one diagonal entry per column, summed apart (a vertex gets a
+    // contribution per incident triangle side: half of its column's
+    // entries would be diagonal duplicates to sort and sum)
+    let mut count = vec![1usize; m + 1];
+    count[0] = 0;
     for &(i, j, _) in contrib {
-        let r = interior[i];
-        if r != usize::MAX {
-            count[r + 1] += 1;
-            if interior[j] != usize::MAX {
-                count[interior[j] + 1] += 1;
-            }
+        if interior[i] != usize::MAX && interior[j] != usize::MAX {
+            count[interior[j] + 1] += 1;
         }
     }
     for c in 0..m {
@@ -71,23 +71,26 @@ pub(super) fn assemble(
     }
     let mut next = count.clone();
     let mut entries = vec![(0usize, 0.0f64); count[m]];
-    let mut put = |col: usize, row: usize, w: f64| {
-        entries[next[col]] = (row, w);
-        next[col] += 1;
-    };
+    let mut diagonal = vec![0.0; m];
     for &(i, j, w) in contrib {
         let r = interior[i];
         if r == usize::MAX {
             continue; // boundary rows are fixed
         }
-        put(r, r, w);
+        diagonal[r] += w;
         match interior[j] {
             usize::MAX => {
                 rhs[(r, 0)] += w * uv[j][0];
                 rhs[(r, 1)] += w * uv[j][1];
             }
-            c => put(c, r, -w),
+            c => {
+                entries[next[c]] = (r, -w);
+                next[c] += 1;
+            }
         }
+    }
+    for (c, d) in diagonal.into_iter().enumerate() {
+        entries[next[c]] = (c, d);
     }
     let (col_ptr, row_idx, values) = compress(&count, &mut entries);
     let sym = SymbolicSparseColMat::new_checked(m, m, col_ptr, None, row_idx);
