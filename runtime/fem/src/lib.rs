@@ -108,7 +108,7 @@ pub use linear::{AutoLimits, LinearSolver};
 pub use newton::params::{FilterPolicy, NewtonParams};
 pub use newton::record::{IterationRecord, NewtonResult, NewtonStatus, TimeSplit};
 pub use newton::solver::{Evaluation, NewtonSolver};
-pub use pattern::Pattern;
+pub use pattern::{Pattern, VertexBlocks};
 pub use term::{MAX_STENCIL_DOFS, Term};
 pub use terms::SoftAnchors;
 

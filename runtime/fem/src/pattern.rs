@@ -29,6 +29,22 @@ pub struct Pattern {
     row_idx: Vec<usize>,
     /// Unknowns whose vertex is in no stencil (their row/column is empty).
     isolated: Vec<usize>,
+    /// The vertex blocks of a built pattern ([`Pattern::vertex_blocks`]).
+    blocks: Option<VertexBlocks>,
+}
+
+/// The unknowns of each vertex (consecutive, all coupled to each other and
+/// to the same unknowns) and the graph between these blocks: what the
+/// fill-reducing orderings work on, known from the assembly instead of
+/// rediscovered from the pattern.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct VertexBlocks {
+    /// `start[b]..start[b + 1]` are the unknowns of block `b`.
+    pub start: Vec<usize>,
+    /// CSR row pointers of the block graph.
+    pub adj_ptr: Vec<usize>,
+    /// CSR neighbours of the block graph (sorted per block, no self loops).
+    pub adj: Vec<usize>,
 }
 
 impl Pattern {
@@ -61,6 +77,12 @@ impl Pattern {
     /// Unknowns that no stencil touches.
     pub fn isolated(&self) -> &[usize] {
         &self.isolated
+    }
+
+    /// The vertex blocks and their graph, for a pattern built from stencils
+    /// (`None` for [`Pattern::from_upper_csc`]).
+    pub fn vertex_blocks(&self) -> Option<&VertexBlocks> {
+        self.blocks.as_ref()
     }
 
     /// A pattern from a saved upper-triangular CSC structure (for tools
@@ -99,6 +121,7 @@ impl Pattern {
             col_ptr,
             row_idx,
             isolated,
+            blocks: None,
         })
     }
 
@@ -261,7 +284,8 @@ pub(crate) fn build(
         vptr: &vptr,
         vrow: &vrow,
     };
-    let pattern = dof_pattern(&adj, &touched)?;
+    let mut pattern = dof_pattern(&adj, &touched)?;
+    pattern.blocks = Some(vertex_blocks(&adj));
     let plans = sets
         .iter()
         .map(|set| term_plan(set, dofs, &active, &pattern))
@@ -361,7 +385,63 @@ fn dof_pattern(adj: &VertexAdjacency<'_>, touched: &[bool]) -> Result<Pattern, F
         col_ptr,
         row_idx,
         isolated,
+        blocks: None,
     })
+}
+
+/// The [`VertexBlocks`] of the vertex adjacency: a block per vertex with a
+/// free DOF, in the order of their unknowns, and the symmetric graph of the
+/// upper vertex CSC (rows of a column ascending, so every list is filled
+/// sorted, as in the ordering's `full_adjacency`).
+fn vertex_blocks(adj: &VertexAdjacency<'_>) -> VertexBlocks {
+    let dofs = adj.dofs;
+    let (n, dim) = (dofs.n_unknowns(), dofs.dim());
+    let vertex = |u: usize| dofs.dof(u) / dim;
+    let mut start = Vec::new();
+    // block of each vertex's first unknown
+    let mut block = vec![usize::MAX; n];
+    for (u, b) in block.iter_mut().enumerate() {
+        if u == 0 || vertex(u) != vertex(u - 1) {
+            *b = start.len();
+            start.push(u);
+        }
+    }
+    start.push(n);
+    let nb = start.len() - 1;
+    let rows = |b: usize| {
+        let f = start[b];
+        adj.vrow[adj.vptr[f]..adj.vptr[f + 1]]
+            .iter()
+            .map(|&q| block[q as usize])
+            .filter(move |&r| r != b)
+    };
+    let mut adj_ptr = vec![0usize; nb + 1];
+    for b in 0..nb {
+        for r in rows(b) {
+            adj_ptr[r + 1] += 1;
+            adj_ptr[b + 1] += 1;
+        }
+    }
+    for b in 0..nb {
+        adj_ptr[b + 1] += adj_ptr[b];
+    }
+    let mut fill = adj_ptr.clone();
+    let mut list = vec![0usize; adj_ptr[nb]];
+    for b in 0..nb {
+        for r in rows(b) {
+            list[fill[b]] = r;
+            fill[b] += 1;
+        }
+        for r in rows(b) {
+            list[fill[r]] = b;
+            fill[r] += 1;
+        }
+    }
+    VertexBlocks {
+        start,
+        adj_ptr,
+        adj: list,
+    }
 }
 
 /// One term's plan: its stencil colouring, and per stencil (in processing

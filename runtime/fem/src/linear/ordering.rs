@@ -221,19 +221,34 @@ fn same_closed(adj: &[usize], ptr: &[usize], a: usize) -> bool {
 }
 
 impl Supervariables {
-    /// Detect the groups of `pattern` and build their graph.
+    /// The groups of `pattern` and their graph: consecutive vertex blocks
+    /// ([`Pattern::vertex_blocks`], or single unknowns for a pattern not
+    /// built from stencils) with the same closed neighbourhood merged.
     pub fn of(pattern: &Pattern) -> Self {
-        let n = pattern.n();
-        let (ptr, adj) = full_adjacency(pattern);
-        let mut start = vec![0usize];
-        let mut group = vec![0usize; n];
-        for (j, gj) in group.iter_mut().enumerate() {
-            if j > 0 && !same_closed(&adj, &ptr, j - 1) {
-                start.push(j);
+        match pattern.vertex_blocks() {
+            Some(b) => Self::merged(&b.start, &b.adj_ptr, &b.adj),
+            None => {
+                let (ptr, adj) = full_adjacency(pattern);
+                let singles: Vec<usize> = (0..=pattern.n()).collect();
+                Self::merged(&singles, &ptr, &adj)
             }
-            *gj = start.len() - 1;
         }
-        start.push(n);
+    }
+
+    /// Merge runs of consecutive blocks (`block[b]..block[b + 1]`, graph
+    /// `ptr`/`adj`: sorted, no self loops) with the same closed
+    /// neighbourhood into groups, and build the group graph.
+    fn merged(block: &[usize], ptr: &[usize], adj: &[usize]) -> Self {
+        let nb = block.len() - 1;
+        let mut start = vec![0usize];
+        let mut group = vec![0usize; nb];
+        for (b, gb) in group.iter_mut().enumerate() {
+            if b > 0 && !same_closed(adj, ptr, b - 1) {
+                start.push(b);
+            }
+            *gb = start.len() - 1;
+        }
+        start.push(nb);
         let ng = start.len() - 1;
         let mut adj_ptr = vec![0usize; ng + 1];
         let mut gadj = Vec::new();
@@ -245,12 +260,12 @@ impl Supervariables {
                 .map(|&i| group[i])
                 .filter(|&h| h != g)
                 .collect();
-            nb.dedup(); // sorted unknowns map to sorted groups
+            nb.dedup(); // sorted blocks map to sorted groups
             gadj.extend_from_slice(&nb);
             adj_ptr[g + 1] = gadj.len();
         }
         Supervariables {
-            start,
+            start: start.iter().map(|&b| block[b]).collect(),
             adj_ptr,
             adj: gadj,
         }
@@ -727,6 +742,55 @@ pub(crate) mod tests {
             // interior vertex (1,1) = 6: 6 neighbours in this triangulation
             assert_eq!(sv.adj_ptr[7] - sv.adj_ptr[6], 6);
         }
+    }
+
+    /// The groups from a built pattern's vertex blocks are those detected
+    /// from its entries alone: vertices with some DOFs fixed, a renumbered
+    /// DOF map, untouched vertices, and consecutive vertices with the same
+    /// closed neighbourhood (merged).
+    #[test]
+    fn supervariables_from_vertex_blocks_are_the_detected_ones() {
+        use crate::pattern::{StencilSet, build};
+        let tris = [0, 1, 2, 2, 1, 3, 3, 1, 4, 5, 6, 7, 1, 4, 8, 4, 9, 8];
+        for dim in [1, 2, 3] {
+            let mut fixed = vec![false; 11 * dim];
+            fixed[dim] = true; // vertex 1's first coordinate
+            fixed[5 * dim..6 * dim].iter_mut().for_each(|f| *f = true);
+            let order = [3, 0, 10, 9, 1, 8, 2, 4, 6, 5, 7];
+            for dofs in [
+                DofMap::all_free(11, dim).unwrap(),
+                DofMap::from_dof_mask(11, dim, &fixed).unwrap(),
+                DofMap::from_dof_mask(11, dim, &fixed)
+                    .unwrap()
+                    .renumbered(&order),
+            ] {
+                let set = StencilSet {
+                    name: "t",
+                    arity: 3,
+                    stencils: &tris,
+                };
+                let built = build(&[set], &dofs).unwrap().0;
+                assert!(built.vertex_blocks().is_some());
+                let plain = Pattern::from_upper_csc(
+                    built.n(),
+                    built.col_ptr().to_vec(),
+                    built.row_idx().to_vec(),
+                )
+                .unwrap();
+                let (a, b) = (Supervariables::of(&built), Supervariables::of(&plain));
+                assert_eq!(a.start, b.start, "dim {dim}");
+                assert_eq!((a.adj_ptr, a.adj), (b.adj_ptr, b.adj), "dim {dim}");
+            }
+        }
+        // the triangle 5 6 7 alone: its vertices merge into one group
+        let dofs = DofMap::all_free(3, 2).unwrap();
+        let set = StencilSet {
+            name: "t",
+            arity: 3,
+            stencils: &[0, 1, 2],
+        };
+        let sv = Supervariables::of(&build(&[set], &dofs).unwrap().0);
+        assert_eq!(sv.start, [0, 6]);
     }
 
     #[test]
