@@ -391,8 +391,7 @@ fn dof_pattern(adj: &VertexAdjacency<'_>, touched: &[bool]) -> Result<Pattern, F
 
 /// The [`VertexBlocks`] of the vertex adjacency: a block per vertex with a
 /// free DOF, in the order of their unknowns, and the symmetric graph of the
-/// upper vertex CSC (rows of a column ascending, so every list is filled
-/// sorted, as in the ordering's `full_adjacency`).
+/// upper vertex CSC.
 fn vertex_blocks(adj: &VertexAdjacency<'_>) -> VertexBlocks {
     let dofs = adj.dofs;
     let (n, dim) = (dofs.n_unknowns(), dofs.dim());
@@ -413,35 +412,47 @@ fn vertex_blocks(adj: &VertexAdjacency<'_>) -> VertexBlocks {
         adj.vrow[adj.vptr[f]..adj.vptr[f + 1]]
             .iter()
             .map(|&q| block[q as usize])
-            .filter(move |&r| r != b)
     };
-    let mut adj_ptr = vec![0usize; nb + 1];
-    for b in 0..nb {
-        for r in rows(b) {
-            adj_ptr[r + 1] += 1;
-            adj_ptr[b + 1] += 1;
-        }
-    }
-    for b in 0..nb {
-        adj_ptr[b + 1] += adj_ptr[b];
-    }
-    let mut fill = adj_ptr.clone();
-    let mut list = vec![0usize; adj_ptr[nb]];
-    for b in 0..nb {
-        for r in rows(b) {
-            list[fill[b]] = r;
-            fill[b] += 1;
-        }
-        for r in rows(b) {
-            list[fill[r]] = b;
-            fill[r] += 1;
-        }
-    }
+    let (adj_ptr, list) = symmetric_graph(nb, rows);
     VertexBlocks {
         start,
         adj_ptr,
         adj: list,
     }
+}
+
+/// The symmetric graph (CSR pointers and neighbours, no self loops) of an
+/// upper-triangular structure over `n` nodes whose column `j` holds the
+/// rows `rows(j)`, ascending and ≤ j. Columns are visited in increasing
+/// order, so every list is filled sorted: node i receives its own rows
+/// (< i) first, then the columns j > i that hold it, in increasing j.
+pub(crate) fn symmetric_graph<I: Iterator<Item = usize>>(
+    n: usize,
+    rows: impl Fn(usize) -> I,
+) -> (Vec<usize>, Vec<usize>) {
+    let mut ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        for i in rows(j).filter(|&i| i != j) {
+            ptr[i + 1] += 1;
+            ptr[j + 1] += 1;
+        }
+    }
+    for j in 0..n {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut fill = ptr.clone();
+    let mut adj = vec![0usize; ptr[n]];
+    for j in 0..n {
+        for i in rows(j).filter(|&i| i != j) {
+            adj[fill[j]] = i;
+            fill[j] += 1;
+        }
+        for i in rows(j).filter(|&i| i != j) {
+            adj[fill[i]] = j;
+            fill[i] += 1;
+        }
+    }
+    (ptr, adj)
 }
 
 /// One term's plan: its stencil colouring, and per stencil (in processing

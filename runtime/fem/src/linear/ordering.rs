@@ -170,42 +170,8 @@ pub(crate) struct Supervariables {
 /// Full symmetric adjacency of the upper-triangular `pattern`, each list
 /// sorted, diagonal excluded.
 fn full_adjacency(pattern: &Pattern) -> (Vec<usize>, Vec<usize>) {
-    let n = pattern.n();
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    let mut ptr = vec![0usize; n + 1];
-    for j in 0..n {
-        for &i in &ri[cp[j]..cp[j + 1]] {
-            if i != j {
-                ptr[i + 1] += 1;
-                ptr[j + 1] += 1;
-            }
-        }
-    }
-    for j in 0..n {
-        ptr[j + 1] += ptr[j];
-    }
-    let mut fill = ptr.clone();
-    let mut adj = vec![0usize; ptr[n]];
-    // columns in increasing order: every list receives its entries sorted
-    // (row i gets j > i in increasing j after all its own rows < i).
-    for j in 0..n {
-        for &i in &ri[cp[j]..cp[j + 1]] {
-            if i != j {
-                adj[fill[j]] = i;
-                fill[j] += 1;
-            }
-        }
-        for &i in &ri[cp[j]..cp[j + 1]] {
-            if i != j {
-                adj[fill[i]] = j;
-                fill[i] += 1;
-            }
-        }
-    }
-    for j in 0..n {
-        adj[ptr[j]..ptr[j + 1]].sort_unstable();
-    }
-    (ptr, adj)
+    crate::pattern::symmetric_graph(pattern.n(), |j| ri[cp[j]..cp[j + 1]].iter().copied())
 }
 
 /// Whether the closed neighbourhoods of `a` and `a + 1` are equal:
