@@ -3,7 +3,9 @@
 //! [`CholeskyFactor::analyze_with`] runs the symbolic analysis once per
 //! pattern (the fill-reducing ordering of [`CholeskyParams::ordering`],
 //! elimination tree, simplicial or supernodal structure chosen by faer from
-//! the flop ratio) and fixes the thread policy ([`ThreadPolicy`]). Each Newton step then calls
+//! the flop ratio) and fixes the thread policy ([`ThreadPolicy`]); a split
+//! factor ([`ThreadPolicy::Split`]) is read off the group graph's
+//! elimination tree and only its halves are analysed by faer. Each Newton step then calls
 //! [`CholeskyFactor::factorize`], which writes the numeric factor into the
 //! preallocated `l_values` using a preallocated scratch buffer, and
 //! [`CholeskyFactor::solve_in_place`]. The factor keeps a copy of the
