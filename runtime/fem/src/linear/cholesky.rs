@@ -175,7 +175,7 @@ fn group_split(
     let Some(groups) = ordered.groups.as_ref().filter(|_| splits(params)) else {
         return Ok(None);
     };
-    let tree = Tree::of_groups(&groups.elimination()?);
+    let tree = Tree::of_groups(&*groups.elimination()?);
     let plain = tree.total_flops();
     if plain < SPLIT_MIN_FLOPS {
         return Ok(None);

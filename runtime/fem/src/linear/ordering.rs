@@ -27,6 +27,8 @@
 //! All orderings produce `perm` with `perm[new] = old` (faer's and METIS's
 //! convention: the factored matrix is A(perm, perm)).
 
+use std::borrow::Cow;
+
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::sparse::linalg::amd;
@@ -326,31 +328,23 @@ pub(crate) struct GroupOrder {
     gperm: Vec<usize>,
     /// The group graph's elimination in this order where choosing the
     /// order computed it.
-    elimination: Option<Elimination>,
+    elimination: Option<GroupElimination>,
 }
 
 impl GroupOrder {
-    /// The elimination of the group graph in this order.
-    pub(crate) fn elimination(&self) -> Result<GroupElimination, FemError> {
-        let (etree, counts) = match &self.elimination {
-            Some(e) => e.clone(),
-            None => group_elimination(&self.sv, &self.gperm)?,
-        };
-        let sizes = self
-            .gperm
-            .iter()
-            .map(|&g| self.sv.start[g + 1] - self.sv.start[g])
-            .collect();
-        Ok(GroupElimination {
-            etree,
-            counts,
-            sizes,
+    /// The elimination of the group graph in this order (the one choosing
+    /// the order computed, else computed here).
+    pub(crate) fn elimination(&self) -> Result<Cow<'_, GroupElimination>, FemError> {
+        Ok(match &self.elimination {
+            Some(e) => Cow::Borrowed(e),
+            None => Cow::Owned(group_elimination(&self.sv, &self.gperm)?),
         })
     }
 }
 
-/// The Cholesky factor of the group graph in a [`GroupOrder`], all indexed
-/// by new position.
+/// The Cholesky factor of the group graph in a group order, all indexed by
+/// new position.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub(crate) struct GroupElimination {
     /// Elimination tree (`-1` for a root).
     pub etree: Vec<isize>,
@@ -393,7 +387,7 @@ fn group_permutation(
     n: usize,
     ordering: FillOrdering,
     coords: Option<&[[f64; 3]]>,
-) -> Result<(Vec<usize>, FillOrdering, Option<Elimination>), FemError> {
+) -> Result<(Vec<usize>, FillOrdering, Option<GroupElimination>), FemError> {
     let used = match ordering {
         FillOrdering::Auto => FillOrdering::auto_choice(n, sv.len()),
         o => o,
@@ -471,7 +465,7 @@ fn flat_geometric(
     n: usize,
     coords: Option<&[[f64; 3]]>,
     max_ratio: f64,
-) -> Result<Option<(Vec<usize>, Elimination)>, FemError> {
+) -> Result<Option<(Vec<usize>, GroupElimination)>, FemError> {
     let Some(coords) = coords.filter(|c| c.len() == n) else {
         return Ok(None);
     };
@@ -483,7 +477,7 @@ fn flat_geometric(
         || group_flops(sv, &amd_order(sv)?),
     );
     let (geometric, elimination) = geometric?;
-    let ratio = flops_of(&elimination.1) / amd?;
+    let ratio = flops_of(&elimination.counts) / amd?;
     Ok((ratio <= max_ratio).then_some((geometric, elimination)))
 }
 
@@ -492,7 +486,7 @@ fn flat_geometric(
 /// flops measure of the factor with one unknown per group, from faer's
 /// elimination tree and column counts (no symbolic factorisation).
 fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
-    Ok(flops_of(&group_elimination(sv, gperm)?.1))
+    Ok(flops_of(&group_elimination(sv, gperm)?.counts))
 }
 
 /// Σ c² over column counts.
@@ -500,13 +494,9 @@ fn flops_of(counts: &[usize]) -> f64 {
     counts.iter().map(|&c| (c as f64).powi(2)).sum()
 }
 
-/// An elimination tree (`-1` for a root) and its column counts (diagonal
-/// included).
-type Elimination = (Vec<isize>, Vec<usize>);
-
-/// faer's [`Elimination`] of the group graph's Cholesky factor in the order
-/// `gperm`.
-fn group_elimination(sv: &Supervariables, gperm: &[usize]) -> Result<Elimination, FemError> {
+/// The [`GroupElimination`] of the group graph in the order `gperm`, from
+/// faer's elimination tree and column counts.
+fn group_elimination(sv: &Supervariables, gperm: &[usize]) -> Result<GroupElimination, FemError> {
     let ng = sv.len();
     let (cp, ri) = sv.upper(gperm);
     let a = SymbolicSparseColMatRef::new_checked(ng, ng, &cp, None, &ri);
@@ -516,7 +506,15 @@ fn group_elimination(sv: &Supervariables, gperm: &[usize]) -> Result<Elimination
     let mut mem = MemBuffer::try_new(req)
         .map_err(|_| FemError::Symbolic("out of memory for the column counts".into()))?;
     simplicial::prefactorize_symbolic_cholesky(&mut etree, &mut counts, a, MemStack::new(&mut mem));
-    Ok((etree, counts))
+    let sizes = gperm
+        .iter()
+        .map(|&g| sv.start[g + 1] - sv.start[g])
+        .collect();
+    Ok(GroupElimination {
+        etree,
+        counts,
+        sizes,
+    })
 }
 
 /// The 2D systems (unknowns) for which [`FillOrdering::Auto`] may compute

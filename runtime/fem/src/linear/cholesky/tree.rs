@@ -80,10 +80,9 @@ impl Tree {
     pub(crate) fn of_supernodal(s: &SymbolicSupernodalCholesky<usize>) -> Tree {
         let n = s.n_supernodes();
         let (begin, end) = (s.supernode_begin(), s.supernode_end());
-        let ends = end;
         let parent = (0..n)
             .map(|k| match s.supernode(k).pattern().iter().min() {
-                Some(&row) => ends.partition_point(|&e| e <= row),
+                Some(&row) => end.partition_point(|&e| e <= row),
                 None => usize::MAX,
             })
             .collect();
@@ -103,9 +102,9 @@ impl Tree {
     /// the *group* graph in the fill-reducing order, group `j` holding
     /// `sizes[j]` consecutive unknowns ([`GroupElimination`]): no symbolic
     /// factorisation of the scalar matrix. Group `j`'s unknowns form a
-    /// dense diagonal block whose
-    /// columns have `sizes[j]·counts[j] − i` entries (i = 0, 1, …; exact
-    /// when all groups have one size, as the vertex blocks of a mesh do),
+    /// dense diagonal block whose columns have `sizes[j]·counts[j] − i`
+    /// entries (i = 0, 1, …; exact when all groups have one size, as the
+    /// vertex blocks of a mesh do),
     /// and a group joins the next one's node when that is its parent and
     /// its only child (a chain gains nothing from being split column by
     /// column: [`split`] would only walk down it).
