@@ -264,9 +264,10 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ParseError> {
 /// The statements of `text` cut into about `pieces` chunks of whole lines,
 /// parsed concurrently and joined in file order: the same result and the
 /// same (first) error as one pass over the file. Each chunk first counts its
-/// lines and its `v` and `vt` statements, so every chunk knows its first
-/// line number and the vertices and texture coordinates before it, which
-/// negative indices and forward references are resolved against.
+/// lines and its `v`, `vt` and `f` statements, so every chunk knows its
+/// first line number, the vertices and texture coordinates before it (which
+/// negative indices and forward references are resolved against) and where
+/// its statements go in the file's storage.
 fn parse_chunks(text: &str, pieces: usize) -> Result<Obj, ParseError> {
     use rayon::prelude::*;
     let chunks = line_chunks(text, pieces);
@@ -346,13 +347,11 @@ fn line_chunks(text: &str, pieces: usize) -> Vec<&str> {
     chunks
 }
 
-/// The first token of a line's content (before any `#`), if any.
-fn keyword(raw: &str) -> Option<&str> {
-    raw.split('#')
-        .next()
-        .unwrap_or("")
-        .split_whitespace()
-        .next()
+/// A line's content (before any `#`) and its tokens: the counting pass and
+/// the parse read statements alike.
+fn statement(raw: &str) -> (&str, std::str::SplitWhitespace<'_>) {
+    let content = raw.split('#').next().unwrap_or("");
+    (content, content.split_whitespace())
 }
 
 /// Lines and `v`, `vt`, `f` statements (of a chunk, or before it).
@@ -380,7 +379,7 @@ fn count_statements(chunk: &str) -> Counts {
     let mut n = Counts::default();
     for raw in chunk.lines() {
         n.lines += 1;
-        match keyword(raw) {
+        match statement(raw).1.next() {
             Some("v") => n.v += 1,
             Some("vt") => n.vt += 1,
             Some("f") => n.f += 1,
@@ -398,8 +397,7 @@ fn parse_lines<'a>(
 ) -> Result<Chunk<'a>, ParseError> {
     for (i, raw) in chunk.lines().enumerate() {
         let line = first_line + i;
-        let content = raw.split('#').next().unwrap_or("");
-        let mut toks = content.split_whitespace();
+        let (content, mut toks) = statement(raw);
         let Some(key) = toks.next() else { continue };
         match key {
             "v" => out
