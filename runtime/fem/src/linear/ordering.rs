@@ -22,7 +22,7 @@
 //!   ordering of the Tutte solve); needs [`Coordinates`] (e.g.
 //!   `NewtonSolver::with_geometry`), asking for it without is a clear error.
 //!   [`FillOrdering::Auto`] takes it instead of METIS where the positions are
-//!   known and the mesh is flat enough ([`GEOMETRIC_MAX_RATIO`]).
+//!   known and the mesh is flat enough ([`GEOMETRIC_MAX_CONSTANT`]).
 //!
 //! All orderings produce `perm` with `perm[new] = old` (faer's and METIS's
 //! convention: the factored matrix is A(perm, perm)).
@@ -58,8 +58,8 @@ pub enum FillOrdering {
     /// By size ([`FillOrdering::auto_choice`]) and cost: METIS for 2D
     /// systems of at least [`METIS_MIN_UNKNOWNS`] unknowns when compiled in
     /// — or there the geometric dissection when positions are known and its
-    /// factor costs at most [`GEOMETRIC_MAX_RATIO`] × block AMD's (a flat
-    /// mesh) —; for 2D systems of [`METIS_PROBE_UNKNOWNS`] unknowns, METIS
+    /// factor costs at most [`GEOMETRIC_MAX_CONSTANT`]·g^1.5 (g vertices: a
+    /// flat mesh) —; for 2D systems of [`METIS_PROBE_UNKNOWNS`] unknowns, METIS
     /// when its factor costs at most [`METIS_MAX_RATIO`] × block AMD's (both
     /// computed, where block AMD's looks poor:
     /// [`METIS_PROBE_MIN_CONSTANT`]); block AMD otherwise.
@@ -140,7 +140,7 @@ impl FillOrdering {
     /// system is 2D (fewer than 2.5 unknowns per group) and
     /// n ≥ [`METIS_MIN_UNKNOWNS`]; block AMD otherwise. Where this says
     /// METIS and the unknowns have positions, `Auto` takes the geometric
-    /// dissection instead on a flat mesh ([`GEOMETRIC_MAX_RATIO`]); where it
+    /// dissection instead on a flat mesh ([`GEOMETRIC_MAX_CONSTANT`]); where it
     /// says block AMD for a 2D system of [`METIS_PROBE_UNKNOWNS`] unknowns,
     /// `Auto` takes METIS instead when its factor is much cheaper
     /// ([`METIS_MAX_RATIO`]).
@@ -394,7 +394,7 @@ fn group_permutation(
     };
     if ordering == FillOrdering::Auto
         && used == FillOrdering::Metis
-        && let Some((gperm, elimination)) = flat_geometric(sv, n, coords, GEOMETRIC_MAX_RATIO)?
+        && let Some((gperm, elimination)) = flat_geometric(sv, n, coords, GEOMETRIC_MAX_CONSTANT)?
     {
         return Ok((gperm, FillOrdering::Geometric, Some(elimination)));
     }
@@ -441,44 +441,46 @@ fn geometric_groups(sv: &Supervariables, coords: &[[f64; 3]]) -> Vec<usize> {
     ecc_mesh::dissection::nested_dissection(graph, &pos)
 }
 
-/// Largest ratio of the geometric dissection's factor cost to block AMD's
-/// (both on the vertex graph, `group_flops`) at which
-/// [`FillOrdering::Auto`] takes the geometric ordering where it would
-/// otherwise run METIS (2D, ≥ [`METIS_MIN_UNKNOWNS`], positions known).
-/// Measured (ordering.md, stop 26): the 1M-triangle bumpy disk 0.81, where
-/// geometric ran the whole parameterisation in 21.9–22.3 s against METIS's
-/// 23.3–24.1 s (three paired rounds: ordering 0.2 s against 3.3–4 s of
-/// setup, factorisations +12 %); flat square grids 1.07 / 1.03 / 0.99 at
-/// 3.7k / 15k / 40k vertices (the ratio falls with size); curved surfaces
-/// and tets 1.67 (camelhead), 2.14 (hand.mesh), 2.6 (a grid rolled three
-/// times round an axis), 6.9 (armadillo_cut_low): a plane cuts them many
-/// times. Block AMD's factor was within 1.9× METIS's on every mesh measured,
-/// so an accepted geometric ordering costs at most ≈ 1.6× METIS's flops,
-/// and 1.15× on the disk.
-pub const GEOMETRIC_MAX_RATIO: f64 = 0.85;
+/// Largest cost of the geometric dissection's factor, Σ c² over the
+/// vertex graph's factor columns (`group_flops`) per g^1.5 (g vertex
+/// groups), at which [`FillOrdering::Auto`] takes the geometric ordering
+/// where it would otherwise run METIS (2D, ≥ [`METIS_MIN_UNKNOWNS`],
+/// positions known).
+///
+/// Nested dissection of a planar mesh costs ≈ c·g^1.5 flops. Measured c
+/// (vertex graphs of the triangle meshes, 2026-12-03): flat square grids
+/// of 15k / 91k / 491k vertices geometric 17.1 / 18.4 / 19.1, METIS 17.2 /
+/// 18.6 / 19.1; the bumpy disk (68k / 503k vertices) geometric 23.0 /
+/// 23.9, METIS 20.1 / 20.9; curved surfaces, where a plane cuts the
+/// surface many times: the flat 491k grid rolled three times round an axis
+/// 57.4, camelhead 47.8 (METIS 15.7), armadillo_cut_low 31.4 and
+/// hand_1_i_f5000 31.6 (METIS 4.9 and 10.9: meshes cut open along seams).
+/// So an accepted geometric ordering costs at most ≈ 1.4× what METIS
+/// reaches on a flat mesh, and a curved or seam-cut one goes to METIS.
+///
+/// Until stop 31 the bound was relative, 0.85 × block AMD's cost, which
+/// cost computing block AMD (0.4 s of setup on the 1M disk) and depended on
+/// AMD's tie-breaking: the same disk in another vertex order gave block AMD
+/// c = 21.7 instead of ≈ 29.5, a ratio of 1.10 instead of 0.81, which would
+/// have sent it to METIS's 3.5 s ordering.
+pub const GEOMETRIC_MAX_CONSTANT: f64 = 28.0;
 
-/// The geometric dissection's group permutation when the unknowns have
-/// positions and its factor costs at most `max_ratio` × block AMD's
-/// ([`GEOMETRIC_MAX_RATIO`]), else `None`.
+/// The geometric dissection's group permutation and its elimination when
+/// the unknowns have positions and its factor costs at most `max_constant`
+/// · g^1.5 ([`GEOMETRIC_MAX_CONSTANT`]), else `None`.
 fn flat_geometric(
     sv: &Supervariables,
     n: usize,
     coords: Option<&[[f64; 3]]>,
-    max_ratio: f64,
+    max_constant: f64,
 ) -> Result<Option<(Vec<usize>, GroupElimination)>, FemError> {
     let Some(coords) = coords.filter(|c| c.len() == n) else {
         return Ok(None);
     };
-    let (geometric, amd) = rayon::join(
-        || {
-            let g = geometric_groups(sv, coords);
-            group_elimination(sv, &g).map(|e| (g, e))
-        },
-        || group_flops(sv, &amd_order(sv)?),
-    );
-    let (geometric, elimination) = geometric?;
-    let ratio = flops_of(&elimination.counts) / amd?;
-    Ok((ratio <= max_ratio).then_some((geometric, elimination)))
+    let geometric = geometric_groups(sv, coords);
+    let elimination = group_elimination(sv, &geometric)?;
+    let constant = flops_of(&elimination.counts) / (sv.len() as f64).powf(1.5);
+    Ok((constant <= max_constant).then_some((geometric, elimination)))
 }
 
 /// Σ c² over the columns c of the Cholesky factor of the group graph
@@ -886,10 +888,11 @@ pub(crate) mod tests {
             .collect()
     }
 
-    /// The geometric dissection is taken when its vertex-graph factor is
-    /// cheap enough against block AMD's: the flat grid (ratio ≈ 1.03 at
-    /// this size) passes a bound of 1.5 and the rolled one (≈ 2.6) does
-    /// not; without positions there is nothing to dissect.
+    /// The geometric dissection is taken when its vertex-graph factor costs
+    /// little enough per g^1.5: the flat grid (c ≈ 17.1 at this size)
+    /// passes [`GEOMETRIC_MAX_CONSTANT`] and not a bound of 16, the rolled
+    /// one (≈ 43) does not pass; without positions there is nothing to
+    /// dissect.
     #[test]
     fn the_geometric_ordering_is_taken_only_where_flat() {
         let (nx, dim) = (120, 2);
@@ -897,16 +900,24 @@ pub(crate) mod tests {
         let sv = Supervariables::of(&p);
         let n = p.n();
         let flat = grid_coords(nx, nx, dim);
-        let (got, elimination) = flat_geometric(&sv, n, Some(&flat), 1.5).unwrap().unwrap();
+        let max = GEOMETRIC_MAX_CONSTANT;
+        let (got, elimination) = flat_geometric(&sv, n, Some(&flat), max).unwrap().unwrap();
         assert_eq!(got, geometric_groups(&sv, &flat));
         assert_eq!(elimination, group_elimination(&sv, &got).unwrap());
-        assert!(flat_geometric(&sv, n, Some(&flat), 0.9).unwrap().is_none());
+        let c = group_flops(&sv, &got).unwrap() / (sv.len() as f64).powf(1.5);
+        assert!((16.5..18.0).contains(&c), "{c}");
+        assert!(flat_geometric(&sv, n, Some(&flat), 16.0).unwrap().is_none());
         let rolled = rolled_coords(nx, nx, dim);
         assert!(
-            flat_geometric(&sv, n, Some(&rolled), 1.5)
+            flat_geometric(&sv, n, Some(&rolled), max)
                 .unwrap()
                 .is_none()
         );
+        let (rolled_perm, _) = flat_geometric(&sv, n, Some(&rolled), 50.0)
+            .unwrap()
+            .unwrap();
+        let c = group_flops(&sv, &rolled_perm).unwrap() / (sv.len() as f64).powf(1.5);
+        assert!((40.0..46.0).contains(&c), "{c}");
         assert!(
             flat_geometric(&sv, n, None, f64::INFINITY)
                 .unwrap()
