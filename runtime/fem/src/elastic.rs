@@ -37,6 +37,7 @@ use ecc_runtime::{
     element_eval, element_eval_projected, element_psi,
 };
 use nalgebra::SMatrix;
+use rayon::prelude::*;
 
 use crate::error::FemError;
 use crate::newton::params::FilterPolicy;
@@ -262,18 +263,27 @@ impl<E: ?Sized, S: Simplex> Elastic<E, S> {
 
 /// Rest data of every element (vertex ids checked first), from its K rest
 /// positions by `make`; the first failure names its element.
-fn rest_data<P: Copy, R, const K: usize>(
+///
+/// Built on rayon's threads; on a failure the elements are gone through in
+/// order again, so the error is the first one whatever the threads did.
+fn rest_data<P: Copy + Sync, R: Send, const K: usize>(
     rest: &[P],
     elements: &[[usize; K]],
-    make: impl Fn([P; K]) -> Result<R, RestError>,
+    make: impl Fn([P; K]) -> Result<R, RestError> + Sync,
 ) -> Result<Vec<R>, FemError> {
     check_indices(elements, rest.len())?;
+    let one = |(q, t): (usize, &[usize; K])| make(t.map(|v| rest[v])).map_err(|e| rest_error(q, e));
     elements
-        .iter()
+        .par_iter()
+        .with_min_len(REST_GRAIN)
         .enumerate()
-        .map(|(q, t)| make(t.map(|v| rest[v])).map_err(|e| rest_error(q, e)))
-        .collect()
+        .map(one)
+        .collect::<Result<Vec<R>, FemError>>()
+        .or_else(|_| elements.iter().enumerate().map(one).collect())
 }
+
+/// Elements per rayon task of [`rest_data`].
+const REST_GRAIN: usize = 1 << 14;
 
 impl<E: Energy<2> + ?Sized> Elastic<E, Tri> {
     /// Triangles with planar rest positions (counter-clockwise = positive area).
@@ -329,6 +339,23 @@ where
             congruence: Vec::new(),
             _kind: PhantomData,
         }
+    }
+
+    /// The same term over its rest shape scaled by `s` (finite, > 0): per
+    /// element Dm⁻¹/s and |q|·s^d, what the rest positions times `s` give
+    /// (to rounding), without building the rest data again (the
+    /// parameterisation's unit-area normalisation). The projection's rest
+    /// factors are recomputed.
+    pub fn scaled(mut self, s: f64) -> Self {
+        let m = s.powi(D as i32);
+        for r in &mut self.rest {
+            *r = Rest {
+                dm_inv: r.dm_inv / s,
+                measure: r.measure * m,
+            };
+        }
+        let projection = self.projection;
+        self.with_projection(projection)
     }
 
     /// Use `projection` for the element Hessians (a bare `Elastic` uses
@@ -457,5 +484,64 @@ where
         let (p, d) = (self.nodes(s, x), self.nodes(s, dx));
         S::first_inversion(p.as_ref().as_flattened(), d.as_ref().as_flattened())
             .unwrap_or(f64::INFINITY)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ecc_runtime::energies::SymmetricDirichlet;
+
+    /// `n` separate triangles, 3 vertices each, in 3D; `flat` ones collinear.
+    fn soup(n: usize, flat: &[usize]) -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
+        let mut p = Vec::with_capacity(3 * n);
+        for q in 0..n {
+            let (x, z) = (q as f64, 0.1 * (q % 7) as f64);
+            let top = if flat.contains(&q) {
+                [x + 2.0, 0.0, z]
+            } else {
+                [x + 0.3, 1.0 + z, z]
+            };
+            p.extend([[x, 0.0, z], [x + 1.0, 0.0, z], top]);
+        }
+        let t = (0..n).map(|q| [3 * q, 3 * q + 1, 3 * q + 2]).collect();
+        (p, t)
+    }
+
+    /// The rest data is built on several threads, and a failure still names
+    /// the first bad element.
+    #[test]
+    fn the_first_degenerate_element_is_reported() {
+        let n = 5 * REST_GRAIN;
+        let (p, t) = soup(n, &[4 * REST_GRAIN + 3, REST_GRAIN + 5, 3 * REST_GRAIN]);
+        let Err(e) = Elastic::<_, Tri>::surface(Arc::new(SymmetricDirichlet), &p, &t) else {
+            panic!("degenerate triangles accepted");
+        };
+        assert!(
+            matches!(e, FemError::DegenerateRest { element, .. } if element == REST_GRAIN + 5),
+            "{e}"
+        );
+    }
+
+    /// `scaled(s)` is the term built from the positions times s, to the
+    /// rounding of those positions (edges of length 1 at x up to 100).
+    #[test]
+    fn a_scaled_term_is_the_term_of_scaled_positions() {
+        let (p, t) = soup(100, &[]);
+        let s = 0.37;
+        let sd = Arc::new(SymmetricDirichlet);
+        let scaled_p: Vec<[f64; 3]> = p.iter().map(|x| x.map(|c| c * s)).collect();
+        let want = Elastic::<_, Tri>::surface(sd.clone(), &scaled_p, &t).unwrap();
+        let got = Elastic::<_, Tri>::surface(sd, &p, &t)
+            .unwrap()
+            .with_projection(Projection::Element)
+            .scaled(s);
+        for (a, b) in got.rest().iter().zip(want.rest()) {
+            assert!((a.measure - b.measure).abs() <= 1e-13 * b.measure);
+            assert!((a.dm_inv - b.dm_inv).norm() <= 1e-13 * b.dm_inv.norm());
+        }
+        let want = want.with_projection(Projection::Element);
+        assert_eq!(got.congruence.len(), want.congruence.len());
+        assert!((got.total_measure() - want.total_measure()).abs() < 1e-12 * want.total_measure());
     }
 }

@@ -218,22 +218,17 @@ fn build_solver<E: Energy<2> + ?Sized + 'static>(
     opts: &ParamOptions,
 ) -> Result<(NewtonSolver<2>, Scales, f64), FemError> {
     let t0 = Instant::now();
-    let elastic0 = Elastic::<E, Tri>::surface(energy.clone(), &mesh.positions, &mesh.triangles)?;
-    let input_area = elastic0.total_measure();
+    let input = Elastic::<E, Tri>::surface(energy, &mesh.positions, &mesh.triangles)?;
+    let input_area = input.total_measure();
     let position_scale = if opts.normalize_area {
         1.0 / input_area.sqrt()
     } else {
         1.0
     };
     let elastic = if opts.normalize_area {
-        let scaled: Vec<[f64; 3]> = mesh
-            .positions
-            .iter()
-            .map(|p| p.map(|c| c * position_scale))
-            .collect();
-        Elastic::<E, Tri>::surface(energy, &scaled, &mesh.triangles)?
+        input.scaled(position_scale)
     } else {
-        elastic0
+        input
     }
     .with_projection(opts.projection.resolve_for(2, opts.newton.filter_policy));
     let rest_area = elastic.total_measure();
