@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use crate::colour::{Colouring, colour_stencils};
 use crate::dofs::DofMap;
 use crate::error::FemError;
+use crate::term::MAX_STENCIL_DOFS;
 
 /// Marks a local entry that touches a fixed DOF.
 pub(crate) const NO_SLOT: u32 = u32::MAX;
@@ -482,27 +483,62 @@ fn term_plan(set: &StencilSet<'_>, dofs: &DofMap, active: &[bool], pattern: &Pat
     slots
         .par_chunks_mut(n_local.max(1))
         .zip(unknowns.par_chunks(k.max(1)))
-        .for_each(|(out, unk)| {
-            let mut q = 0;
-            for a in 0..k {
-                for b in a..k {
-                    let (ia, ib) = (unk[a], unk[b]);
-                    if ia != u32::MAX && ib != u32::MAX {
-                        // in the pattern by construction
-                        out[q] = pattern
-                            .slot(ia as usize, ib as usize)
-                            .map_or(NO_SLOT, |x| x as u32);
-                    }
-                    q += 1;
-                }
-            }
-        });
+        .for_each(|(out, unk)| stencil_slots(pattern, unk, dim, out));
     TermPlan {
         k,
         n_local,
         unknowns,
         slots,
         colouring,
+    }
+}
+
+/// The pattern slot of each upper local pair (a ≤ b) of one stencil whose
+/// local DOF a has the unknown `unk[a]` (`u32::MAX`: fixed), into `out`
+/// ([`NO_SLOT`] where a DOF is fixed), with one binary search per pair of
+/// its vertices instead of one per pair of DOFs.
+///
+/// A vertex's unknowns are consecutive, f, f + 1, … (the DOF map numbers
+/// them vertex by vertex, components ascending), and every column of a
+/// vertex holds the same rows below f (the unknowns of its neighbours
+/// numbered before it). So for unknowns i ≤ j of different vertices, whose
+/// first unknowns are fᵢ ≤ fⱼ, entry (i, j) sits as far into column j as
+/// (fᵢ, fⱼ) sits into column fⱼ, plus i − fᵢ; and within one vertex,
+/// column j = f + c holds those rows, then f, …, j, so (i, j) sits at
+/// (its count of rows below f) + i − f.
+fn stencil_slots(pattern: &Pattern, unk: &[u32], dim: usize, out: &mut [u32]) {
+    let (k, cp) = (unk.len(), pattern.col_ptr());
+    let arity = k / dim;
+    // first unknown of each local vertex (u32::MAX: all fixed)
+    let mut first = [u32::MAX; MAX_STENCIL_DOFS];
+    for (a, &u) in unk.iter().enumerate() {
+        let f = &mut first[a / dim];
+        *f = (*f).min(u);
+    }
+    // position of local pair (a, b), a ≤ b, in the upper row-major order
+    let q = |a: usize, b: usize| a * k - a * (a + 1) / 2 + b;
+    out.fill(NO_SLOT);
+    for va in 0..arity {
+        for vb in va..arity {
+            let (fa, fb) = (first[va], first[vb]);
+            if fa == u32::MAX || fb == u32::MAX {
+                continue;
+            }
+            let (fi, fj) = (fa.min(fb) as usize, fa.max(fb) as usize);
+            // in the pattern by construction
+            let Some(off) = pattern.slot(fi, fj).map(|s| s - cp[fj]) else {
+                continue;
+            };
+            for a in va * dim..(va + 1) * dim {
+                for b in (vb * dim).max(a)..(vb + 1) * dim {
+                    let (ia, ib) = (unk[a], unk[b]);
+                    if ia != u32::MAX && ib != u32::MAX {
+                        let (i, j) = (ia.min(ib) as usize, ia.max(ib) as usize);
+                        out[q(a, b)] = (cp[j] + off + i - fi) as u32;
+                    }
+                }
+            }
+        }
     }
 }
 
@@ -526,6 +562,70 @@ mod tests {
         assert!(err(vec![0, 1, 2, 3], vec![0, 0, 2]).contains("column 1 has no diagonal"));
         assert!(err(vec![0, 1, 3, 4], vec![0, 0, 2, 2]).contains("column 1 has no diagonal"));
         assert!(err(vec![0, 1, 4, 5], vec![0, 0, 0, 1, 2]).contains("not strictly increasing"));
+    }
+
+    /// The slots found per vertex pair ([`stencil_slots`]) are those of one
+    /// binary search per DOF pair, whatever is fixed (whole vertices, single
+    /// components) and however the vertices are numbered.
+    #[test]
+    fn stencil_slots_are_the_searched_ones() {
+        let mut seed = 12345u64;
+        let mut rand = |m: usize| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 33) as usize % m
+        };
+        let nv = 40;
+        for (dim, arity) in [(2, 3), (3, 4), (3, 3), (2, 2)] {
+            let mut stencils = Vec::new();
+            while stencils.len() < 60 * arity {
+                let st: Vec<usize> = (0..arity).map(|_| rand(nv)).collect();
+                if (1..arity).all(|a| !st[..a].contains(&st[a])) {
+                    stencils.extend(st);
+                }
+            }
+            let mask: Vec<bool> = (0..nv * dim).map(|_| rand(4) == 0).collect();
+            let order: Vec<usize> = {
+                let mut o: Vec<usize> = (0..nv).collect();
+                (0..nv).for_each(|i| o.swap(i, rand(nv)));
+                o
+            };
+            let maps = [
+                DofMap::all_free(nv, dim).unwrap(),
+                DofMap::from_fixed_vertices(nv, dim, &[0, 7, 8]).unwrap(),
+                DofMap::from_dof_mask(nv, dim, &mask).unwrap(),
+                DofMap::from_dof_mask(nv, dim, &mask)
+                    .unwrap()
+                    .renumbered(&order),
+            ];
+            for dofs in maps {
+                let set = StencilSet {
+                    name: "s",
+                    arity,
+                    stencils: &stencils,
+                };
+                let (p, plans) = build(&[set], &dofs).unwrap();
+                let plan = &plans[0];
+                let (k, nl) = (plan.k, plan.n_local);
+                let mut fixed_pairs = 0;
+                for (unk, got) in plan.unknowns.chunks(k).zip(plan.slots.chunks(nl)) {
+                    let mut q = 0;
+                    for a in 0..k {
+                        for b in a..k {
+                            let want = match (unk[a], unk[b]) {
+                                (u32::MAX, _) | (_, u32::MAX) => NO_SLOT,
+                                (i, j) => p.slot(i as usize, j as usize).unwrap() as u32,
+                            };
+                            fixed_pairs += usize::from(want == NO_SLOT);
+                            assert_eq!(got[q], want, "dim {dim}, stencil {unk:?}, pair ({a}, {b})");
+                            q += 1;
+                        }
+                    }
+                }
+                assert!(dofs.n_fixed() == 0 || fixed_pairs > 0);
+            }
+        }
     }
 
     #[test]
