@@ -28,6 +28,7 @@ use faer::{Conj, MatMut, Par, Side};
 
 use serde::{Deserialize, Serialize};
 
+mod grouped;
 mod half;
 mod precision;
 mod real;

@@ -22,7 +22,9 @@
 //! them as if S were one more supernode, without factorising it: the
 //! separator's k×k dense block is factorised once, in Σ, not in each half.
 //! The symbolic structure (supernodes, their row patterns, relaxation) is
-//! faer's analysis of Bᵢ; a supernode straddling Pᵢ and S is cut at |Pᵢ|
+//! faer's analysis of the vertex graph of Bᵢ expanded to its unknowns
+//! ([`super::grouped`]), or of Bᵢ's scalar pattern where the unknowns are
+//! not whole vertex blocks; a supernode straddling Pᵢ and S is cut at |Pᵢ|
 //! (its S columns become rows of the cut supernode).
 //!
 //! **Solves.** Forward on [bᵢ; 0] through the Pᵢ supernodes leaves yᵢ =
@@ -52,7 +54,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::{Accum, MatMut, MatRef, Par};
 
 use super::real::Real;
-use super::split::{oom, sub_pattern, zeros};
+use super::split::{lower_p_block, oom, sub_pattern, zeros};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 
@@ -66,12 +68,15 @@ const SMALL_UPDATE: usize = 4096;
 /// its values are the (end − start + |rows|) × (end − start) column-major
 /// block at `val` in `l`.
 #[derive(Clone, Debug)]
-struct Node {
-    start: usize,
-    end: usize,
-    rows: Range<usize>,
-    val: usize,
+pub(super) struct Node {
+    pub(super) start: usize,
+    pub(super) end: usize,
+    pub(super) rows: Range<usize>,
+    pub(super) val: usize,
 }
+
+/// The supernodes of the P columns and the row indices their `rows` index.
+pub(super) type PNodes = (Vec<Node>, Vec<usize>);
 
 /// Scratch of [`Half::update_from`]: the product of a large update and
 /// the target row of each updating row.
@@ -155,9 +160,20 @@ fn faer_analysis(
     col_ptr: &[usize],
     row_idx: &[usize],
 ) -> Result<faer::sparse::linalg::cholesky::SymbolicCholesky<usize>, FemError> {
+    faer_analysis_relaxed(n, col_ptr, row_idx, Default::default())
+}
+
+/// [`faer_analysis`] with the relaxation `supernodal`.
+fn faer_analysis_relaxed(
+    n: usize,
+    col_ptr: &[usize],
+    row_idx: &[usize],
+    supernodal: faer::sparse::linalg::SymbolicSupernodalParams<'_>,
+) -> Result<faer::sparse::linalg::cholesky::SymbolicCholesky<usize>, FemError> {
     let a = SymbolicSparseColMatRef::new_checked(n, n, col_ptr, None, row_idx);
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+        supernodal_params: supernodal,
         ..Default::default()
     };
     factorize_symbolic_cholesky(a, faer::Side::Upper, SymmetricOrdering::Identity, params)
@@ -166,7 +182,7 @@ fn faer_analysis(
 
 /// The supernodes of the first `n_p` columns of `sn` (cut at `n_p`) and
 /// their row patterns.
-fn p_nodes(sn: &SymbolicSupernodalCholesky<usize>, n_p: usize) -> (Vec<Node>, Vec<usize>) {
+fn p_nodes(sn: &SymbolicSupernodalCholesky<usize>, n_p: usize) -> PNodes {
     let (mut nodes, mut rows, mut val) = (Vec::new(), Vec::new(), 0);
     for s in 0..sn.n_supernodes() {
         let (start, e) = (sn.supernode_begin()[s], sn.supernode_end()[s]);
@@ -187,6 +203,24 @@ fn p_nodes(sn: &SymbolicSupernodalCholesky<usize>, n_p: usize) -> (Vec<Node>, Ve
         val += m * w;
     }
     (nodes, rows)
+}
+
+/// The P supernodes of faer's analysis of the scalar pattern of Bᵢ with
+/// the relaxation `relax` (the reference of [`super::grouped`]'s).
+#[cfg(test)]
+pub(super) fn scalar_p_nodes(
+    pattern: &Pattern,
+    unknowns: &[usize],
+    n_p: usize,
+    relax: Option<&[(usize, f64)]>,
+) -> PNodes {
+    let (col_ptr, row_idx, _) = sub_pattern(pattern, unknowns);
+    let params = faer::sparse::linalg::SymbolicSupernodalParams { relax };
+    let symbolic = faer_analysis_relaxed(unknowns.len(), &col_ptr, &row_idx, params).unwrap();
+    let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+        unreachable!("forced supernodal")
+    };
+    p_nodes(sn, n_p)
 }
 
 /// Descendant lists (CSR by target; target `nodes.len()` is S).
@@ -224,36 +258,6 @@ fn descendants(nodes: &[Node], rows: &[usize], n_p: usize) -> (Vec<usize>, Vec<u
     (ptr, desc)
 }
 
-/// Lower-triangular CSC of the first `n_p` columns of the upper CSC
-/// (`col_ptr`, `row_idx`, A-slots `gather`): pointers, rows, slots.
-fn lower_p_columns(
-    n_p: usize,
-    col_ptr: &[usize],
-    row_idx: &[usize],
-    gather: &[usize],
-) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
-    let mut ptr = vec![0usize; n_p + 1];
-    row_idx
-        .iter()
-        .filter(|&&r| r < n_p)
-        .for_each(|&r| ptr[r + 1] += 1);
-    for j in 0..n_p {
-        ptr[j + 1] += ptr[j];
-    }
-    let mut next = ptr.clone();
-    let (mut rows, mut slots) = (vec![0; ptr[n_p]], vec![0; ptr[n_p]]);
-    for c in 0..col_ptr.len() - 1 {
-        for e in col_ptr[c]..col_ptr[c + 1] {
-            let r = row_idx[e];
-            if r < n_p {
-                (rows[next[r]], slots[next[r]]) = (c, gather[e]);
-                next[r] += 1;
-            }
-        }
-    }
-    (ptr, rows, slots)
-}
-
 impl<T: Real> Half<T> {
     /// Structure of Bᵢ whose unknowns are `unknowns` (the first `n_p` are
     /// Pᵢ, the rest S, each in elimination order) and all its storage.
@@ -264,15 +268,19 @@ impl<T: Real> Half<T> {
     ) -> Result<Self, FemError> {
         let n = unknowns.len();
         let k = n - n_p;
-        let (col_ptr, row_idx, gather) = sub_pattern(pattern, &unknowns);
-        let symbolic = faer_analysis(n, &col_ptr, &row_idx)?;
-        let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
-            unreachable!("the halves are analysed with FORCE_SUPERNODAL")
+        let (nodes, rows) = match super::grouped::p_nodes_of_groups(pattern, &unknowns, n_p)? {
+            Some(found) => found,
+            None => {
+                let (col_ptr, row_idx, _) = sub_pattern(pattern, &unknowns);
+                let symbolic = faer_analysis(n, &col_ptr, &row_idx)?;
+                let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
+                    unreachable!("the halves are analysed with FORCE_SUPERNODAL")
+                };
+                p_nodes(sn, n_p)
+            }
         };
-        let (nodes, rows) = p_nodes(sn, n_p);
-        drop(symbolic);
         let (desc_ptr, desc) = descendants(&nodes, &rows, n_p);
-        let (a_ptr, a_rows, a_slots) = lower_p_columns(n_p, &col_ptr, &row_idx, &gather);
+        let (a_ptr, a_rows, a_slots) = lower_p_block(pattern, &unknowns, n_p);
         let (mut len, mut flops) = (0, 0.0);
         for node in &nodes {
             let (w, r) = (node.end - node.start, node.rows.len());

@@ -107,42 +107,66 @@ pub(super) fn sub_pattern(
     pattern: &Pattern,
     unknowns: &[usize],
 ) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
-    let n = unknowns.len();
+    block_csc(pattern, unknowns, unknowns.len(), |li, lj| {
+        Some((li.max(lj), li.min(lj)))
+    })
+}
+
+/// Lower-triangular CSC of the first `n_p` columns of A[unknowns,
+/// unknowns] in the local order, and the slot in A of each entry.
+pub(super) fn lower_p_block(
+    pattern: &Pattern,
+    unknowns: &[usize],
+    n_p: usize,
+) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
+    block_csc(pattern, unknowns, n_p, |li, lj| {
+        (li.min(lj) < n_p).then(|| (li.min(lj), li.max(lj)))
+    })
+}
+
+/// CSC over `cols` columns (pointers, rows, slots in A) of the entries of
+/// A[unknowns, unknowns] (local indices) that `place` puts at some
+/// (column, row), each column sorted by row.
+fn block_csc(
+    pattern: &Pattern,
+    unknowns: &[usize],
+    cols: usize,
+    place: impl Fn(usize, usize) -> Option<(usize, usize)>,
+) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
     let mut local = vec![usize::MAX; pattern.n()];
     unknowns.iter().enumerate().for_each(|(l, &u)| local[u] = l);
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    // (local column, local row, slot) of every entry inside the block
+    // (column, row, slot) of every placed entry inside the block: the upper
+    // columns of its unknowns, their rows inside it
     let entries = |visit: &mut dyn FnMut(usize, usize, usize)| {
-        for j in 0..pattern.n() {
-            let lj = local[j];
-            if lj == usize::MAX {
-                continue;
-            }
+        for (lj, &j) in unknowns.iter().enumerate() {
             for (slot, &i) in (cp[j]..cp[j + 1]).zip(&ri[cp[j]..cp[j + 1]]) {
                 let li = local[i];
-                if li != usize::MAX {
-                    visit(li.max(lj), li.min(lj), slot);
+                if li != usize::MAX
+                    && let Some((c, r)) = place(li, lj)
+                {
+                    visit(c, r, slot);
                 }
             }
         }
     };
-    // counting sort by local column, then each column by row
-    let mut col_ptr = vec![0usize; n + 1];
+    // counting sort by column, then each column by row
+    let mut col_ptr = vec![0usize; cols + 1];
     entries(&mut |c, _, _| col_ptr[c + 1] += 1);
-    for c in 0..n {
+    for c in 0..cols {
         col_ptr[c + 1] += col_ptr[c];
     }
-    let mut next = col_ptr[..n].to_vec();
-    let mut cols = vec![(0usize, 0usize); col_ptr[n]];
+    let mut next = col_ptr[..cols].to_vec();
+    let mut entry = vec![(0usize, 0usize); col_ptr[cols]];
     entries(&mut |c, r, slot| {
-        cols[next[c]] = (r, slot);
+        entry[next[c]] = (r, slot);
         next[c] += 1;
     });
-    for c in 0..n {
-        cols[col_ptr[c]..col_ptr[c + 1]].sort_unstable();
+    for c in 0..cols {
+        entry[col_ptr[c]..col_ptr[c + 1]].sort_unstable();
     }
-    let row_idx = cols.iter().map(|e| e.0).collect();
-    let gather = cols.iter().map(|e| e.1).collect();
+    let row_idx = entry.iter().map(|e| e.0).collect();
+    let gather = entry.iter().map(|e| e.1).collect();
     (col_ptr, row_idx, gather)
 }
 
