@@ -46,11 +46,19 @@ fn solve_error(message: String) -> TutteError {
     TutteError::Solve { message }
 }
 
+/// The triangles' contributions `(i, j, w)`, handed to a visitor one by
+/// one, each time the assembly asks (they are generated again rather than
+/// stored: six per triangle were 144 MB on the 1M-triangle disk); the
+/// first error stops them.
+pub(super) type Contributions<'a> =
+    dyn Fn(&mut dyn FnMut(Contribution)) -> Result<(), TutteError> + 'a;
+
 /// Assemble `L_II` and `−L_IB u_B` from the triangles' contributions
-/// `(i, j, w)` (row i gains +w on its diagonal and −w at column j).
-/// `interior[v]` is v's unknown or `usize::MAX` on the boundary.
+/// `(i, j, w)` (row i gains +w on its diagonal and −w at column j), in two
+/// passes over them. `interior[v]` is v's unknown or `usize::MAX` on the
+/// boundary.
 pub(super) fn assemble(
-    contrib: &[Contribution],
+    contributions: &Contributions<'_>,
     interior: &[usize],
     uv: &[[f64; 2]],
     m: usize,
@@ -61,21 +69,21 @@ pub(super) fn assemble(
     // entries would be diagonal duplicates to sort and sum)
     let mut count = vec![1usize; m + 1];
     count[0] = 0;
-    for &(i, j, _) in contrib {
+    contributions(&mut |(i, j, _)| {
         if interior[i] != usize::MAX && interior[j] != usize::MAX {
             count[interior[j] + 1] += 1;
         }
-    }
+    })?;
     for c in 0..m {
         count[c + 1] += count[c];
     }
     let mut next = count.clone();
     let mut entries = vec![(0usize, 0.0f64); count[m]];
     let mut diagonal = vec![0.0; m];
-    for &(i, j, w) in contrib {
+    contributions(&mut |(i, j, w)| {
         let r = interior[i];
         if r == usize::MAX {
-            continue; // boundary rows are fixed
+            return; // boundary rows are fixed
         }
         diagonal[r] += w;
         match interior[j] {
@@ -88,7 +96,7 @@ pub(super) fn assemble(
                 next[c] += 1;
             }
         }
-    }
+    })?;
     for (c, d) in diagonal.into_iter().enumerate() {
         entries[next[c]] = (c, d);
     }
@@ -212,7 +220,11 @@ mod tests {
             let p = t.map(|v| mesh.positions[v]);
             triangle_contributions(TutteWeights::Uniform, *t, p, &mut contrib).unwrap();
         }
-        let sys = assemble(&contrib, &interior, &uv, first_outer).unwrap();
+        let each = |visit: &mut dyn FnMut(Contribution)| {
+            contrib.iter().for_each(|&c| visit(c));
+            Ok(())
+        };
+        let sys = assemble(&each, &interior, &uv, first_outer).unwrap();
         (sys, mesh.positions[..first_outer].to_vec())
     }
 

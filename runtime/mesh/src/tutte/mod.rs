@@ -153,14 +153,18 @@ fn solve_interior(
     uv: &mut [[f64; 2]],
     m: usize,
 ) -> Result<(), TutteError> {
-    let mut contrib = Vec::with_capacity(mesh.triangles.len() * 6);
-    for t in &mesh.triangles {
-        let p = t.map(|v| mesh.positions[v]);
-        weights::triangle_contributions(weights, *t, p, &mut contrib)
-            .map_err(|edge| TutteError::BadWeight { weights, edge })?;
-    }
-    let mut sys = linear::assemble(&contrib, interior, uv, m)?;
-    drop(contrib);
+    let each = |visit: &mut dyn FnMut(weights::Contribution)| {
+        let mut contrib = Vec::with_capacity(6);
+        for t in &mesh.triangles {
+            contrib.clear();
+            let p = t.map(|v| mesh.positions[v]);
+            weights::triangle_contributions(weights, *t, p, &mut contrib)
+                .map_err(|edge| TutteError::BadWeight { weights, edge })?;
+            contrib.iter().for_each(|&c| visit(c));
+        }
+        Ok(())
+    };
+    let mut sys = linear::assemble(&each, interior, uv, m)?;
     let symmetric = matches!(weights, TutteWeights::Uniform | TutteWeights::Cotangent);
     let solved = if symmetric {
         let mut pos = vec![[0.0; 3]; m];
