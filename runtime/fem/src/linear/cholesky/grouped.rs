@@ -23,7 +23,7 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
 };
 
-use super::half::{Node, PNodes};
+use super::half::{PNodes, p_nodes_expanded};
 use crate::error::FemError;
 use crate::pattern::{Pattern, VertexBlocks};
 
@@ -141,29 +141,7 @@ fn analyse(
     let SymbolicCholeskyRaw::Supernodal(sn) = symbolic.raw() else {
         unreachable!("the halves are analysed with FORCE_SUPERNODAL")
     };
-    let at = |g: usize| groups.start[g];
-    let (mut nodes, mut rows, mut val) = (Vec::new(), Vec::new(), 0);
-    for s in 0..sn.n_supernodes() {
-        let (start, e) = (at(sn.supernode_begin()[s]), at(sn.supernode_end()[s]));
-        if start >= n_p {
-            break;
-        }
-        let end = e.min(n_p);
-        let r0 = rows.len();
-        rows.extend(end..e);
-        for &g in sn.supernode(s).pattern() {
-            rows.extend(at(g)..at(g + 1));
-        }
-        let (w, m) = (end - start, end - start + rows.len() - r0);
-        nodes.push(Node {
-            start,
-            end,
-            rows: r0..rows.len(),
-            val,
-        });
-        val += m * w;
-    }
-    Ok(Some((nodes, rows)))
+    Ok(Some(p_nodes_expanded(sn, n_p, |g| groups.start[g])))
 }
 
 #[cfg(test)]

@@ -183,16 +183,30 @@ fn faer_analysis_relaxed(
 /// The supernodes of the first `n_p` columns of `sn` (cut at `n_p`) and
 /// their row patterns.
 fn p_nodes(sn: &SymbolicSupernodalCholesky<usize>, n_p: usize) -> PNodes {
+    p_nodes_expanded(sn, n_p, |c| c)
+}
+
+/// The supernodes of the first `n_p` unknowns and their row patterns, from
+/// an analysis `sn` whose column c stands for the unknowns
+/// `at(c)..at(c + 1)` (c itself for a scalar analysis, a vertex's unknowns
+/// for [`super::grouped`]), cut at `n_p`.
+pub(super) fn p_nodes_expanded(
+    sn: &SymbolicSupernodalCholesky<usize>,
+    n_p: usize,
+    at: impl Fn(usize) -> usize,
+) -> PNodes {
     let (mut nodes, mut rows, mut val) = (Vec::new(), Vec::new(), 0);
     for s in 0..sn.n_supernodes() {
-        let (start, e) = (sn.supernode_begin()[s], sn.supernode_end()[s]);
+        let (start, e) = (at(sn.supernode_begin()[s]), at(sn.supernode_end()[s]));
         if start >= n_p {
             break;
         }
         let end = e.min(n_p);
         let r0 = rows.len();
         rows.extend(end..e);
-        rows.extend_from_slice(sn.supernode(s).pattern());
+        for &c in sn.supernode(s).pattern() {
+            rows.extend(at(c)..at(c + 1));
+        }
         let (w, m) = (end - start, end - start + rows.len() - r0);
         nodes.push(Node {
             start,
