@@ -151,31 +151,64 @@ mod tests {
     use crate::linear::ordering::tests::grid;
 
     /// A renumbering that keeps every vertex's unknowns together (vertices
-    /// in a scrambled order), with the last `k` vertices as S.
-    fn scrambled_vertices(p: &Pattern, seed: usize) -> Vec<usize> {
+    /// in a scrambled order), and the unknowns of all but the last 5
+    /// vertices (P; S is the rest).
+    fn scrambled_vertices(p: &Pattern, seed: usize) -> (Vec<usize>, usize) {
         let b = p.vertex_blocks().unwrap();
         let nb = b.start.len() - 1;
         let mut order: Vec<usize> = (0..nb).collect();
         for i in 0..nb {
             order.swap(i, (i * 7919 + seed) % nb);
         }
-        order
+        let size = |v: usize| b.start[v + 1] - b.start[v];
+        let n_s: usize = order[nb - 5..].iter().map(|&v| size(v)).sum();
+        let unknowns: Vec<usize> = order
             .iter()
             .flat_map(|&v| b.start[v]..b.start[v + 1])
-            .collect()
+            .collect();
+        let n_p = unknowns.len() - n_s;
+        (unknowns, n_p)
+    }
+
+    /// The triangulated nx×nx grid's pattern with `dim` unknowns per vertex,
+    /// every fourth DOF fixed: vertices of `dim` − 1 and `dim` unknowns.
+    fn masked_grid(nx: usize, dim: usize) -> Pattern {
+        let v = |i: usize, j: usize| i + j * (nx + 1);
+        let mut tris = Vec::new();
+        for j in 0..nx {
+            for i in 0..nx {
+                tris.extend([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+                tris.extend([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+            }
+        }
+        let nv = (nx + 1) * (nx + 1);
+        let mask: Vec<bool> = (0..nv * dim).map(|d| d % 4 == 1).collect();
+        let dofs = crate::dofs::DofMap::from_dof_mask(nv, dim, &mask).unwrap();
+        let set = crate::pattern::StencilSet {
+            name: "t",
+            arity: 3,
+            stencils: &tris,
+        };
+        crate::pattern::build(&[set], &dofs).unwrap().0
     }
 
     /// Unrelaxed, the expanded supernodes of the vertex graph are exactly
-    /// those of faer's analysis of the scalar pattern.
+    /// those of faer's analysis of the scalar pattern, with vertices of one
+    /// size or of several (fixed components).
     #[test]
     fn expanded_vertex_supernodes_are_the_scalar_ones() {
-        for (nx, dim) in [(9, 2), (6, 3), (12, 1)] {
-            let p = grid(nx, nx, dim);
-            let unknowns = scrambled_vertices(&p, 3);
-            let n_p = unknowns.len() - 5 * dim;
-            let (nodes, rows) = analyse(&p, &unknowns, n_p, false).unwrap().unwrap();
-            let (want_nodes, want_rows) = scalar_p_nodes(&p, &unknowns, n_p, None);
-            assert_eq!(nodes.len(), want_nodes.len(), "{nx} {dim}");
+        let patterns = [
+            grid(9, 9, 2),
+            grid(6, 6, 3),
+            grid(12, 12, 1),
+            masked_grid(9, 2),
+            masked_grid(7, 3),
+        ];
+        for (case, p) in patterns.iter().enumerate() {
+            let (unknowns, n_p) = scrambled_vertices(p, 3);
+            let (nodes, rows) = analyse(p, &unknowns, n_p, false).unwrap().unwrap();
+            let (want_nodes, want_rows) = scalar_p_nodes(p, &unknowns, n_p, None);
+            assert_eq!(nodes.len(), want_nodes.len(), "case {case}");
             for (a, b) in nodes.iter().zip(&want_nodes) {
                 assert_eq!((a.start, a.end, a.val), (b.start, b.end, b.val));
                 assert_eq!(rows[a.rows.clone()], want_rows[b.rows.clone()]);
