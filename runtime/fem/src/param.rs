@@ -225,6 +225,10 @@ fn build_solver<E: Energy<2> + ?Sized + 'static>(
     } else {
         1.0
     };
+    // every rest frame was built, so each area is positive and finite with
+    // finite squares (≤ ≈ 1e154): the total neither overflows nor vanishes
+    // and the scale is finite and positive
+    debug_assert!(position_scale.is_finite() && position_scale > 0.0);
     let elastic = if opts.normalize_area {
         input.scaled(position_scale)
     } else {
