@@ -663,6 +663,12 @@ pub(crate) mod tests {
 
     /// Triangles of an nx×ny grid, `dim` unknowns per vertex.
     pub(crate) fn grid(nx: usize, ny: usize, dim: usize) -> Pattern {
+        grid_with(nx, ny, DofMap::all_free((nx + 1) * (ny + 1), dim).unwrap())
+    }
+
+    /// Triangles of an nx×ny grid over the DOF map `dofs` ((nx + 1)(ny + 1)
+    /// vertices).
+    pub(crate) fn grid_with(nx: usize, ny: usize, dofs: DofMap) -> Pattern {
         let v = |i: usize, j: usize| i + j * (nx + 1);
         let mut tris = Vec::new();
         for j in 0..ny {
@@ -671,7 +677,6 @@ pub(crate) mod tests {
                 tris.extend([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
             }
         }
-        let dofs = DofMap::all_free((nx + 1) * (ny + 1), dim).unwrap();
         let set = StencilSet {
             name: "t",
             arity: 3,

@@ -148,7 +148,7 @@ fn analyse(
 mod tests {
     use super::super::half::scalar_p_nodes;
     use super::*;
-    use crate::linear::ordering::tests::grid;
+    use crate::linear::ordering::tests::{grid, grid_with};
 
     /// A renumbering that keeps every vertex's unknowns together (vertices
     /// in a scrambled order), and the unknowns of all but the last 5
@@ -173,23 +173,13 @@ mod tests {
     /// The triangulated nx×nx grid's pattern with `dim` unknowns per vertex,
     /// every fourth DOF fixed: vertices of `dim` − 1 and `dim` unknowns.
     fn masked_grid(nx: usize, dim: usize) -> Pattern {
-        let v = |i: usize, j: usize| i + j * (nx + 1);
-        let mut tris = Vec::new();
-        for j in 0..nx {
-            for i in 0..nx {
-                tris.extend([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
-                tris.extend([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
-            }
-        }
         let nv = (nx + 1) * (nx + 1);
         let mask: Vec<bool> = (0..nv * dim).map(|d| d % 4 == 1).collect();
-        let dofs = crate::dofs::DofMap::from_dof_mask(nv, dim, &mask).unwrap();
-        let set = crate::pattern::StencilSet {
-            name: "t",
-            arity: 3,
-            stencils: &tris,
-        };
-        crate::pattern::build(&[set], &dofs).unwrap().0
+        grid_with(
+            nx,
+            nx,
+            crate::dofs::DofMap::from_dof_mask(nv, dim, &mask).unwrap(),
+        )
     }
 
     /// Unrelaxed, the expanded supernodes of the vertex graph are exactly
