@@ -27,9 +27,6 @@ use super::half::{PNodes, p_nodes_expanded};
 use crate::error::FemError;
 use crate::pattern::{Pattern, VertexBlocks};
 
-/// faer's relaxation thresholds (its default), in columns.
-const RELAX: [(usize, f64); 4] = [(4, 1.0), (16, 0.8), (48, 0.1), (usize::MAX, 0.05)];
-
 /// The vertices of a half in its local order: vertex `g` holds the local
 /// unknowns `start[g]..start[g + 1]` and is vertex block `block[g]`.
 struct LocalGroups {
@@ -126,7 +123,13 @@ fn analyse(
     // 0.035–0.039 s against 0.042–0.046 s with the widths rounded down;
     // for d = 2 the two agree)
     let d = ((unknowns.len() as f64 / ng.max(1) as f64).round() as usize).max(1);
-    let relax = RELAX.map(|(w, z)| (if w == usize::MAX { w } else { w.div_ceil(d) }, z));
+    // faer's default thresholds (widths in columns)
+    let relax: Vec<(usize, f64)> = SymbolicSupernodalParams::default()
+        .relax
+        .unwrap_or_default()
+        .iter()
+        .map(|&(w, z)| (if w == usize::MAX { w } else { w.div_ceil(d) }, z))
+        .collect();
     let a = SymbolicSparseColMatRef::new_checked(ng, ng, &col_ptr, None, &row_idx);
     let params = CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
