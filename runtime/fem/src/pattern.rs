@@ -529,10 +529,11 @@ fn stencil_slots(pattern: &Pattern, unk: &[u32], dim: usize, out: &mut [u32]) {
                 continue;
             }
             let (fi, fj) = (fa.min(fb) as usize, fa.max(fb) as usize);
-            // a column's diagonal is its last row; other pairs are in the
-            // pattern by construction
+            // a vertex's own block needs no search (its column's diagonal
+            // is its last row); other pairs are in the pattern by
+            // construction
             let off = if fi == fj {
-                Some(cp[fj + 1] - 1 - cp[fj])
+                Some(pattern.diag_slot(fj) - cp[fj])
             } else {
                 pattern.slot(fi, fj).map(|s| s - cp[fj])
             };

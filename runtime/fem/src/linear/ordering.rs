@@ -479,7 +479,7 @@ fn flat_geometric(
     };
     let geometric = geometric_groups(sv, coords);
     let elimination = group_elimination(sv, &geometric)?;
-    let constant = flops_of(&elimination.counts) / (sv.len() as f64).powf(1.5);
+    let constant = per_nd_scale(flops_of(&elimination.counts), sv.len());
     Ok((constant <= max_constant).then_some((geometric, elimination)))
 }
 
@@ -489,6 +489,13 @@ fn flat_geometric(
 /// elimination tree and column counts (no symbolic factorisation).
 fn group_flops(sv: &Supervariables, gperm: &[usize]) -> Result<f64, FemError> {
     Ok(flops_of(&group_elimination(sv, gperm)?.counts))
+}
+
+/// A factor cost `flops` of a graph of `groups` vertices per groups^1.5:
+/// the constant c of nested dissection's c·g^1.5 on a planar mesh, which
+/// [`GEOMETRIC_MAX_CONSTANT`] and [`METIS_PROBE_MIN_CONSTANT`] bound.
+fn per_nd_scale(flops: f64, groups: usize) -> f64 {
+    flops / (groups as f64).powf(1.5)
 }
 
 /// Σ c² over column counts.
@@ -573,7 +580,7 @@ fn two_d(n: usize, groups: usize) -> bool {
 fn cheaper_of_metis_and_amd(sv: &Supervariables) -> Result<(Vec<usize>, FillOrdering), FemError> {
     let amd = amd_order(sv)?;
     let amd_flops = group_flops(sv, &amd)?;
-    if amd_flops < METIS_PROBE_MIN_CONSTANT * (sv.len() as f64).powf(1.5) {
+    if per_nd_scale(amd_flops, sv.len()) < METIS_PROBE_MIN_CONSTANT {
         return Ok((amd, FillOrdering::BlockAmd));
     }
     let metis = metis_groups(sv)?;
@@ -909,7 +916,7 @@ pub(crate) mod tests {
         let (got, elimination) = flat_geometric(&sv, n, Some(&flat), max).unwrap().unwrap();
         assert_eq!(got, geometric_groups(&sv, &flat));
         assert_eq!(elimination, group_elimination(&sv, &got).unwrap());
-        let c = group_flops(&sv, &got).unwrap() / (sv.len() as f64).powf(1.5);
+        let c = per_nd_scale(group_flops(&sv, &got).unwrap(), sv.len());
         assert!((16.5..18.0).contains(&c), "{c}");
         assert!(flat_geometric(&sv, n, Some(&flat), 16.0).unwrap().is_none());
         let rolled = rolled_coords(nx, nx, dim);
@@ -921,7 +928,7 @@ pub(crate) mod tests {
         let (rolled_perm, _) = flat_geometric(&sv, n, Some(&rolled), 50.0)
             .unwrap()
             .unwrap();
-        let c = group_flops(&sv, &rolled_perm).unwrap() / (sv.len() as f64).powf(1.5);
+        let c = per_nd_scale(group_flops(&sv, &rolled_perm).unwrap(), sv.len());
         assert!((40.0..46.0).contains(&c), "{c}");
         assert!(
             flat_geometric(&sv, n, None, f64::INFINITY)
