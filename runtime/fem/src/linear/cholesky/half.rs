@@ -282,8 +282,9 @@ impl<T: Real> Half<T> {
     ) -> Result<Self, FemError> {
         let n = unknowns.len();
         let k = n - n_p;
-        let (nodes, rows) = match super::grouped::p_nodes_of_groups(pattern, &unknowns, n_p)? {
-            Some(found) => found,
+        let grouped = super::grouped::grouped(pattern, &unknowns, n_p);
+        let (nodes, rows) = match &grouped {
+            Some(half) => super::grouped::p_nodes_of_groups(half, n_p)?,
             None => {
                 let (col_ptr, row_idx, _) = sub_pattern(pattern, &unknowns);
                 let symbolic = faer_analysis(n, &col_ptr, &row_idx)?;
@@ -294,7 +295,10 @@ impl<T: Real> Half<T> {
             }
         };
         let (desc_ptr, desc) = descendants(&nodes, &rows, n_p);
-        let (a_ptr, a_rows, a_slots) = lower_p_block(pattern, &unknowns, n_p);
+        let (a_ptr, a_rows, a_slots) = match &grouped {
+            Some(half) => super::grouped::lower_p_block(pattern, half, n_p),
+            None => lower_p_block(pattern, &unknowns, n_p),
+        };
         let (mut len, mut flops) = (0, 0.0);
         for node in &nodes {
             let (w, r) = (node.end - node.start, node.rows.len());
