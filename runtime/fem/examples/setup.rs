@@ -8,7 +8,9 @@
 //! Reads MESH once, then runs the SD parameterisation's `prepare` REPEATS
 //! times (default 5) with the default options and prints one line per run:
 //! wall seconds and the process's CPU seconds (user + system, all threads,
-//! from `/proc/self/stat`), then the best of each. CPU time is what a busy
+//! from `/proc/self/stat`) and the Newton factor's size and flops (which
+//! the shared vertex dissection must not worsen), then the best of each.
+//! CPU time is what a busy
 //! machine cannot hide: on two cores setup's wall time is at least half of
 //! it.
 
@@ -64,8 +66,14 @@ fn main() {
             }
         };
         let (wall, cpu) = (t.elapsed().as_secs_f64(), cpu_seconds() - c);
+        let linear = problem.solver.linear_system();
+        let (bytes, flops) = (linear.factor_bytes(), linear.factor_flops());
         drop(problem);
-        println!("run {r}: wall {wall:.3} s, cpu {cpu:.2} s");
+        println!(
+            "run {r}: wall {wall:.3} s, cpu {cpu:.2} s, factor {:.1} MB, {:.3e} flops",
+            bytes.unwrap_or(0) as f64 / 1e6,
+            flops.unwrap_or(f64::NAN)
+        );
         best_wall = best_wall.min(wall);
         best_cpu = best_cpu.min(cpu);
     }

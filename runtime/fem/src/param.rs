@@ -17,9 +17,14 @@
 //! 5. **Solve.** Projected Newton with no fixed vertex: the translation null
 //!    space is handled by the solver's diagonal shift.
 //!
-//! Setup runs the Tutte solve (sequential sparse Cholesky, ecc-mesh) on its
-//! own thread while this thread builds the solver (rest frames, pattern,
-//! colouring, symbolic analysis): the two are independent, so the result is
+//! Setup first computes one geometric nested dissection of the mesh's
+//! vertex graph (`ecc_mesh::dissection::mesh_dissection`, on rayon's
+//! threads), which both the Tutte solve (restricted to the interior) and the
+//! Newton solver's `geometric` ordering use instead of each dissecting its
+//! own graph of the same vertices (issue #11, stop 32). Then it runs the
+//! Tutte solve (sequential sparse Cholesky, ecc-mesh) on its own thread
+//! while this thread builds the solver (rest frames, pattern, colouring,
+//! symbolic analysis): the two are independent, so the result is
 //! bit-identical to running them one after the other, and on two cores the
 //! setup costs about the longer of the two instead of their sum (issue #11:
 //! on the 1M-triangle disk the Tutte solve was ≈ 1/3 of the setup).
@@ -28,7 +33,8 @@ use std::ops::ControlFlow;
 use std::sync::Arc;
 use std::time::Instant;
 
-use ecc_mesh::{TriMesh, TutteWeights, tutte_embedding};
+use ecc_mesh::dissection::mesh_dissection;
+use ecc_mesh::{TriMesh, TutteWeights, tutte_embedding, tutte_embedding_in_order};
 use ecc_runtime::Energy;
 use serde::{Deserialize, Serialize};
 
@@ -94,7 +100,8 @@ pub struct Parameterization {
     pub rest_area: f64,
     /// Seconds spent in the Tutte start.
     pub tutte_seconds: f64,
-    /// Seconds spent building the solver (rest frames, pattern, colouring, symbolic analysis).
+    /// Seconds spent building the solver (the shared vertex dissection,
+    /// rest frames, pattern, colouring, symbolic analysis).
     pub setup_seconds: f64,
 }
 
@@ -156,7 +163,8 @@ pub struct ParamProblem {
     pub input_area: f64,
     /// Seconds spent in the Tutte start.
     pub tutte_seconds: f64,
-    /// Seconds spent building the solver (rest frames, pattern, colouring, symbolic analysis).
+    /// Seconds spent building the solver (the shared vertex dissection,
+    /// rest frames, pattern, colouring, symbolic analysis).
     pub setup_seconds: f64,
 }
 
@@ -174,16 +182,24 @@ pub fn prepare<E: Energy<2> + ?Sized + 'static>(
         return Err(FemError::EmptyMesh);
     }
     let weights = opts.tutte;
+    let t0 = Instant::now();
+    let order = mesh_dissection(&mesh.positions, &mesh.triangles);
+    let dissection_seconds = t0.elapsed().as_secs_f64();
+    let order = order.as_deref();
     let (built, tutte) = std::thread::scope(|scope| {
         let tutte = scope.spawn(move || {
             let t1 = Instant::now();
-            let uv = tutte_embedding(mesh, weights);
+            let uv = match order {
+                Some(order) => tutte_embedding_in_order(mesh, weights, order),
+                None => tutte_embedding(mesh, weights),
+            };
             (uv, t1.elapsed().as_secs_f64())
         });
-        let built = build_solver(mesh, energy, opts);
+        let built = build_solver(mesh, energy, opts, order);
         (built, tutte.join())
     });
-    let (solver, scales, setup_seconds) = built?;
+    let (solver, scales, solver_seconds) = built?;
+    let setup_seconds = dissection_seconds + solver_seconds;
     let (uv, tutte_seconds) = match tutte {
         Ok(r) => r,
         // the Tutte thread panicked: hand the panic on unchanged
@@ -216,6 +232,7 @@ fn build_solver<E: Energy<2> + ?Sized + 'static>(
     mesh: &TriMesh,
     energy: Arc<E>,
     opts: &ParamOptions,
+    dissection: Option<&[usize]>,
 ) -> Result<(NewtonSolver<2>, Scales, f64), FemError> {
     let t0 = Instant::now();
     let input = Elastic::<E, Tri>::surface(energy, &mesh.positions, &mesh.triangles)?;
@@ -242,7 +259,10 @@ fn build_solver<E: Energy<2> + ?Sized + 'static>(
     }
     let terms: Vec<Box<dyn Term<2>>> = vec![Box::new(elastic)];
     let dofs = DofMap::all_free(mesh.positions.len(), 2)?;
-    let solver = NewtonSolver::with_geometry(terms, dofs, newton, &mesh.positions)?;
+    let solver = match dissection {
+        Some(d) => NewtonSolver::with_dissected_geometry(terms, dofs, newton, &mesh.positions, d),
+        None => NewtonSolver::with_geometry(terms, dofs, newton, &mesh.positions),
+    }?;
     let scales = Scales {
         position_scale,
         rest_area,
@@ -352,7 +372,9 @@ mod tests {
     }
 
     /// The concurrent setup gives the start and problem of the sequential
-    /// one: the Tutte embedding rescaled to the rest area.
+    /// one: the Tutte embedding in the shared vertex dissection rescaled to
+    /// the rest area, which is the one in the interior's own dissection to
+    /// rounding.
     #[test]
     fn the_start_is_the_rescaled_tutte_embedding() {
         let mut mesh = ecc_mesh::disk_tri(4, 2.0);
@@ -361,9 +383,15 @@ mod tests {
         }
         let opts = ParamOptions::default();
         let prob = prepare(&mesh, Arc::new(SymmetricDirichlet), &opts).unwrap();
-        let uv = tutte_embedding(&mesh, opts.tutte).unwrap();
+        let order = mesh_dissection(&mesh.positions, &mesh.triangles).unwrap();
+        let uv = tutte_embedding_in_order(&mesh, opts.tutte, &order).unwrap();
         let want = tutte_start(&mesh, uv, prob.rest_area).unwrap();
         assert_eq!(prob.start, want);
+        let own = tutte_embedding(&mesh, opts.tutte).unwrap();
+        let own = tutte_start(&mesh, own, prob.rest_area).unwrap();
+        for (a, b) in own.iter().zip(&prob.start) {
+            assert!((a[0] - b[0]).abs() < 1e-13 && (a[1] - b[1]).abs() < 1e-13);
+        }
         assert!((prob.rest_area - 1.0).abs() < 1e-12);
         assert!(prob.tutte_seconds >= 0.0 && prob.setup_seconds >= 0.0);
     }

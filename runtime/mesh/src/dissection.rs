@@ -98,6 +98,70 @@ fn dissect(graph: Graph<'_>, pos: &[[f64; 3]], marks: &Marks, verts: &mut [usize
     }
 }
 
+/// The vertex graph of a triangle mesh over `n` vertices (an edge per
+/// triangle side, both directions, neighbours sorted, no repeats, no self
+/// loops) as [`Graph`] storage `(ptr, idx)`; `None` when a triangle names
+/// a vertex ≥ `n`.
+pub fn triangle_graph(n: usize, triangles: &[[usize; 3]]) -> Option<(Vec<usize>, Vec<usize>)> {
+    let mut ptr = vec![0usize; n + 1];
+    for t in triangles {
+        for &v in t {
+            *ptr.get_mut(v + 1)? += 2;
+        }
+    }
+    for v in 0..n {
+        ptr[v + 1] += ptr[v];
+    }
+    let mut next = ptr[..n].to_vec();
+    let mut idx = vec![0usize; ptr[n]];
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            idx[next[a]] = b;
+            next[a] += 1;
+            idx[next[b]] = a;
+            next[b] += 1;
+        }
+    }
+    // each list sorted and compacted in place (the write never passes the read)
+    let mut out = Vec::with_capacity(n + 1);
+    out.push(0);
+    let mut w = 0;
+    for v in 0..n {
+        let (s, e) = (ptr[v], ptr[v + 1]);
+        idx[s..e].sort_unstable();
+        let mut last = usize::MAX;
+        for r in s..e {
+            let u = idx[r];
+            if u != last && u != v {
+                idx[w] = u;
+                w += 1;
+                last = u;
+            }
+        }
+        out.push(w);
+    }
+    idx.truncate(w);
+    Some((out, idx))
+}
+
+/// [`nested_dissection`] of a triangle mesh's vertex graph
+/// ([`triangle_graph`]) at `positions`: the one order the Tutte start
+/// ([`crate::tutte_embedding_in_order`]) and the Newton solver's
+/// `geometric` ordering can share instead of each dissecting its own graph
+/// of the same vertices. `None` when a triangle names a vertex without a
+/// position.
+pub fn mesh_dissection(positions: &[[f64; 3]], triangles: &[[usize; 3]]) -> Option<Vec<usize>> {
+    let (ptr, idx) = triangle_graph(positions.len(), triangles)?;
+    Some(nested_dissection(
+        Graph {
+            ptr: &ptr,
+            idx: &idx,
+        },
+        positions,
+    ))
+}
+
 /// The inverse of the permutation `perm` (`inv[perm[new]] = new`), as faer's
 /// `PermRef` wants it beside `perm`.
 pub fn inverse_permutation(perm: &[usize]) -> Vec<usize> {
@@ -274,5 +338,27 @@ mod tests {
         }
         let perm = dissect(&ptr, &idx, &pos);
         assert!(is_permutation(&perm, n * n));
+    }
+
+    /// The triangle graph of the generated grid is the hand-built grid
+    /// graph (each list sorted); the dissection of the mesh is that of the
+    /// graph; a vertex out of range is `None`, not a panic.
+    #[test]
+    fn the_triangle_graph_is_the_grid_graph() {
+        let n = 9;
+        let mesh = crate::grid_tri(n - 1, n - 1, 1.0, 1.0);
+        let (ptr, idx) = triangle_graph(mesh.positions.len(), &mesh.triangles).unwrap();
+        let (want_ptr, want_idx, _) = grid(n);
+        // the hand-built lists are unsorted: compare as sets per vertex
+        assert_eq!(ptr, want_ptr);
+        for v in 0..n * n {
+            let mut want = want_idx[want_ptr[v]..want_ptr[v + 1]].to_vec();
+            want.sort_unstable();
+            assert_eq!(idx[ptr[v]..ptr[v + 1]], want[..], "vertex {v}");
+        }
+        let perm = mesh_dissection(&mesh.positions, &mesh.triangles).unwrap();
+        assert_eq!(perm, dissect(&ptr, &idx, &mesh.positions));
+        assert!(triangle_graph(3, &[[0, 1, 3]]).is_none());
+        assert!(mesh_dissection(&mesh.positions[..4], &mesh.triangles).is_none());
     }
 }

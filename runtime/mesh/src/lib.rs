@@ -113,7 +113,9 @@ pub use io::{
     parse_vtk, read_mesh, read_tet_mesh, read_tri_mesh, write_obj, write_vtk_tet, write_vtk_tri,
 };
 pub use topology::{Components, boundary_loops, components, tet_boundary_faces};
-pub use tutte::{TutteEmbedding, tutte_embedding, tutte_embedding_report};
+pub use tutte::{
+    TutteEmbedding, tutte_embedding, tutte_embedding_in_order, tutte_embedding_report,
+};
 pub use types::{
     AnyMesh, DEGENERATE_REL_TOL, TetMesh, TriMesh, TutteWeights, Validated, ValidationOptions,
 };

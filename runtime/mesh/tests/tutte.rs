@@ -10,7 +10,7 @@ use common::data;
 use ecc_mesh::geometry::signed_area_uv;
 use ecc_mesh::{
     TriMesh, TutteError, TutteWeights, ValidationError, disk_tri, grid_tri, read_tri_mesh,
-    tutte_embedding, tutte_embedding_report,
+    tutte_embedding, tutte_embedding_in_order, tutte_embedding_report,
 };
 
 const ALL: [TutteWeights; 3] = [
@@ -111,6 +111,48 @@ fn generated_disks_embed_bijectively_with_all_weights() {
     for w in ALL {
         assert_bijective_disk(&disk_tri(12, 2.0), w, "disk_tri(12)");
         assert_bijective_disk(&grid_tri(20, 10, 2.0, 1.0), w, "grid_tri(20, 10)");
+    }
+}
+
+/// In the mesh's own dissection (shared with the Newton solver) the map
+/// is the one in the interior's dissection, to rounding, on real disks and
+/// with every weight; an order that is not a permutation of the vertices is
+/// not used (the same map as [`tutte_embedding`], bit for bit).
+#[test]
+fn a_shared_vertex_order_gives_the_same_map() {
+    let camel = read_tri_mesh(data("camelhead.off")).unwrap();
+    let meshes = [camel, disk_tri(12, 2.0), grid_tri(20, 10, 2.0, 1.0)];
+    for (case, mesh) in meshes.iter().enumerate() {
+        let n = mesh.positions.len();
+        let order =
+            ecc_mesh::dissection::mesh_dissection(&mesh.positions, &mesh.triangles).unwrap();
+        let mut repeated = order.clone();
+        repeated[1] = repeated[0];
+        let beyond: Vec<usize> = (1..=n).collect();
+        for w in [TutteWeights::Uniform, TutteWeights::Cotangent] {
+            let own = match tutte_embedding(mesh, w) {
+                Ok(uv) | Err(TutteError::Flipped { uv, .. }) => uv,
+                Err(e) => panic!("case {case} {w:?}: {e}"),
+            };
+            let shared = match tutte_embedding_in_order(mesh, w, &order) {
+                Ok(uv) | Err(TutteError::Flipped { uv, .. }) => uv,
+                Err(e) => panic!("case {case} {w:?}: {e}"),
+            };
+            let gap = own
+                .iter()
+                .zip(&shared)
+                .map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()))
+                .fold(0.0, f64::max);
+            assert!(gap < 1e-12, "case {case} {w:?}: maps differ by {gap}");
+            for bad in [&repeated[..], &order[1..], &beyond[..]] {
+                match tutte_embedding_in_order(mesh, w, bad) {
+                    Ok(uv) | Err(TutteError::Flipped { uv, .. }) => {
+                        assert!(uv == own, "case {case} {w:?}: a bad order was used")
+                    }
+                    Err(e) => panic!("case {case} {w:?}: {e}"),
+                }
+            }
+        }
     }
 }
 

@@ -199,7 +199,7 @@ fn group_split(
 fn analysis(
     pattern: &Pattern,
     params: CholeskyParams,
-    coords: Option<&[[f64; 3]]>,
+    coords: Option<&Coordinates>,
 ) -> Result<(Kind, FillOrdering), FemError> {
     let n = pattern.n();
     // SAFETY-free: the pattern invariants (sorted, in-bounds rows) are checked here.
@@ -305,7 +305,7 @@ impl CholeskyFactor {
         params: CholeskyParams,
         coords: Option<Coordinates>,
     ) -> Result<Self, FemError> {
-        let (kind, ordering) = analysis(pattern, params, coords.as_deref())?;
+        let (kind, ordering) = analysis(pattern, params, coords.as_ref())?;
         Ok(CholeskyFactor {
             kind,
             analysed: structure(pattern),
@@ -331,7 +331,12 @@ impl CholeskyFactor {
         self.kind = Kind::Missing;
         self.analysed = (Vec::new(), Vec::new());
         self.factored = false;
-        let (kind, ordering) = analysis(pattern, self.params, self.coords.as_deref())?;
+        // a dissection computed for the old pattern's graph need not suit
+        // the new one's
+        if let Some(c) = &mut self.coords {
+            c.dissection = None;
+        }
+        let (kind, ordering) = analysis(pattern, self.params, self.coords.as_ref())?;
         self.ordering = ordering;
         self.kind = kind;
         self.analysed = structure(pattern);
@@ -944,7 +949,8 @@ mod tests {
                 FillOrdering::Geometric,
             ),
         ] {
-            let ordered = ordered(&p, o, coords.as_deref()).unwrap();
+            let coords = coords.map(Coordinates::from);
+            let ordered = ordered(&p, o, coords.as_ref()).unwrap();
             let elimination = ordered.groups.as_ref().unwrap().elimination().unwrap();
             let tree = Tree::of_groups(&elimination);
             let n = p.n();

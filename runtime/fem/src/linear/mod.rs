@@ -174,7 +174,7 @@ impl LinearSystem {
     ) -> Result<Self, FemError> {
         if choice != LinearSolver::Pcg {
             // an error here, not `Auto` quietly falling back to PCG below
-            let positioned = coords.as_ref().is_some_and(|c| c.len() == pattern.n());
+            let positioned = coords.as_ref().is_some_and(|c| c.at.len() == pattern.n());
             cholesky.ordering.check_usable(positioned)?;
         }
         let pcg = || {

@@ -28,6 +28,7 @@
 //! convention: the factored matrix is A(perm, perm)).
 
 use std::borrow::Cow;
+use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::SymbolicSparseColMatRef;
@@ -153,10 +154,38 @@ impl FillOrdering {
     }
 }
 
-/// The position of every unknown (its vertex's), for
-/// [`FillOrdering::Geometric`]; shared, so analyses and re-analyses copy no
-/// coordinates.
-pub type Coordinates = std::sync::Arc<[[f64; 3]]>;
+/// Where the unknowns are, for [`FillOrdering::Geometric`]: the position
+/// of every unknown (its vertex's) and, when one was computed already, a
+/// nested dissection of the vertices at these positions. Shared, so
+/// analyses and re-analyses copy nothing.
+#[derive(Clone, Debug)]
+pub struct Coordinates {
+    /// The position of every unknown.
+    pub at: Arc<[[f64; 3]]>,
+    /// The first unknown of every vertex in the order of a nested dissection
+    /// of the vertex graph at these positions, computed elsewhere (the
+    /// parameterisation shares `ecc_mesh::dissection::mesh_dissection` with
+    /// its Tutte start). The geometric ordering takes it as its group order
+    /// when it names every group exactly once by the group's first unknown
+    /// (the groups are the vertices); otherwise the groups are dissected
+    /// here. Only the fill depends on it, never the solution.
+    pub dissection: Option<Arc<[usize]>>,
+}
+
+impl FromIterator<[f64; 3]> for Coordinates {
+    fn from_iter<I: IntoIterator<Item = [f64; 3]>>(at: I) -> Self {
+        at.into_iter().collect::<Vec<_>>().into()
+    }
+}
+
+impl From<Vec<[f64; 3]>> for Coordinates {
+    fn from(at: Vec<[f64; 3]>) -> Self {
+        Coordinates {
+            at: at.into(),
+            dissection: None,
+        }
+    }
+}
 
 /// Groups of consecutive unknowns with equal closed neighbourhoods, and the
 /// graph between groups (full adjacency, no self loops, CSR).
@@ -302,7 +331,7 @@ fn amd_order(sv: &Supervariables) -> Result<Vec<usize>, FemError> {
 pub(crate) fn permutation(
     pattern: &Pattern,
     ordering: FillOrdering,
-    coords: Option<&[[f64; 3]]>,
+    coords: Option<&Coordinates>,
 ) -> Result<(Option<Vec<usize>>, FillOrdering), FemError> {
     let o = ordered(pattern, ordering, coords)?;
     Ok((o.perm, o.used))
@@ -358,7 +387,7 @@ pub(crate) struct GroupElimination {
 pub(crate) fn ordered(
     pattern: &Pattern,
     ordering: FillOrdering,
-    coords: Option<&[[f64; 3]]>,
+    coords: Option<&Coordinates>,
 ) -> Result<Ordered, FemError> {
     if ordering == FillOrdering::Amd {
         return Ok(Ordered {
@@ -386,7 +415,7 @@ fn group_permutation(
     sv: &Supervariables,
     n: usize,
     ordering: FillOrdering,
-    coords: Option<&[[f64; 3]]>,
+    coords: Option<&Coordinates>,
 ) -> Result<(Vec<usize>, FillOrdering, Option<GroupElimination>), FemError> {
     let used = match ordering {
         FillOrdering::Auto => FillOrdering::auto_choice(n, sv.len()),
@@ -406,7 +435,7 @@ fn group_permutation(
         FillOrdering::Metis => metis_groups(sv)?,
         FillOrdering::Geometric => {
             let coords = coords
-                .filter(|c| c.len() == n)
+                .filter(|c| c.at.len() == n)
                 .ok_or_else(missing_positions)?;
             geometric_groups(sv, coords)
         }
@@ -431,14 +460,44 @@ fn missing_feature(ordering: FillOrdering) -> FemError {
 }
 
 /// Geometric nested dissection of the group graph, each group at the
-/// position of its first unknown.
-fn geometric_groups(sv: &Supervariables, coords: &[[f64; 3]]) -> Vec<usize> {
-    let pos: Vec<[f64; 3]> = sv.start[..sv.len()].iter().map(|&u| coords[u]).collect();
+/// position of its first unknown: the dissection `coords` carries when it
+/// is one of the groups ([`Coordinates::dissection`]), else computed here.
+fn geometric_groups(sv: &Supervariables, coords: &Coordinates) -> Vec<usize> {
+    if let Some(gperm) = coords
+        .dissection
+        .as_deref()
+        .and_then(|d| given_groups(sv, d))
+    {
+        return gperm;
+    }
+    let pos: Vec<[f64; 3]> = sv.start[..sv.len()].iter().map(|&u| coords.at[u]).collect();
     let graph = ecc_mesh::dissection::Graph {
         ptr: &sv.adj_ptr,
         idx: &sv.adj,
     };
     ecc_mesh::dissection::nested_dissection(graph, &pos)
+}
+
+/// The group permutation naming the groups in the order of `firsts` (the
+/// first unknown of each vertex in a dissection's order), or `None` unless
+/// `firsts` names every group exactly once by its first unknown.
+fn given_groups(sv: &Supervariables, firsts: &[usize]) -> Option<Vec<usize>> {
+    let n = *sv.start.last()?;
+    if firsts.len() != sv.len() {
+        return None;
+    }
+    let mut group = vec![usize::MAX; n];
+    for g in 0..sv.len() {
+        group[sv.start[g]] = g;
+    }
+    let mut seen = vec![false; sv.len()];
+    firsts
+        .iter()
+        .map(|&u| {
+            let g = *group.get(u)?;
+            (g != usize::MAX && !std::mem::replace(&mut seen[g], true)).then_some(g)
+        })
+        .collect()
 }
 
 /// Largest cost of the geometric dissection's factor, Σ c² over the
@@ -471,10 +530,10 @@ pub const GEOMETRIC_MAX_CONSTANT: f64 = 28.0;
 fn flat_geometric(
     sv: &Supervariables,
     n: usize,
-    coords: Option<&[[f64; 3]]>,
+    coords: Option<&Coordinates>,
     max_constant: f64,
 ) -> Result<Option<(Vec<usize>, GroupElimination)>, FemError> {
-    let Some(coords) = coords.filter(|c| c.len() == n) else {
+    let Some(coords) = coords.filter(|c| c.at.len() == n) else {
         return Ok(None);
     };
     let geometric = geometric_groups(sv, coords);
@@ -812,7 +871,7 @@ pub(crate) mod tests {
     #[test]
     fn every_available_ordering_is_a_permutation_keeping_blocks() {
         let p = grid(7, 5, 2);
-        let coords = grid_coords(7, 5, 2);
+        let coords: Coordinates = grid_coords(7, 5, 2).into();
         for o in FillOrdering::ALL.into_iter().filter(|o| o.is_available()) {
             let (perm, used) = permutation(&p, o, Some(&coords)).unwrap();
             assert_eq!(used, o);
@@ -911,7 +970,7 @@ pub(crate) mod tests {
         let p = grid(nx, nx, dim);
         let sv = Supervariables::of(&p);
         let n = p.n();
-        let flat = grid_coords(nx, nx, dim);
+        let flat: Coordinates = grid_coords(nx, nx, dim).into();
         let max = GEOMETRIC_MAX_CONSTANT;
         let (got, elimination) = flat_geometric(&sv, n, Some(&flat), max).unwrap().unwrap();
         assert_eq!(got, geometric_groups(&sv, &flat));
@@ -919,7 +978,7 @@ pub(crate) mod tests {
         let c = per_nd_scale(group_flops(&sv, &got).unwrap(), sv.len());
         assert!((16.5..18.0).contains(&c), "{c}");
         assert!(flat_geometric(&sv, n, Some(&flat), 16.0).unwrap().is_none());
-        let rolled = rolled_coords(nx, nx, dim);
+        let rolled: Coordinates = rolled_coords(nx, nx, dim).into();
         assert!(
             flat_geometric(&sv, n, Some(&rolled), max)
                 .unwrap()
@@ -937,6 +996,37 @@ pub(crate) mod tests {
         );
     }
 
+    /// A dissection given with the coordinates is the geometric ordering's
+    /// group order when it names every group once by its first unknown
+    /// (here: the computed one reversed, which no dissection gives); one
+    /// that names a group twice, misses one or names an unknown that does
+    /// not start a group is not used (the groups are dissected).
+    #[test]
+    fn a_given_dissection_is_used_only_when_it_is_one_of_the_groups() {
+        let (nx, dim) = (20, 2);
+        let p = grid(nx, nx, dim);
+        let sv = Supervariables::of(&p);
+        let mut coords: Coordinates = grid_coords(nx, nx, dim).into();
+        let own = geometric_groups(&sv, &coords);
+        let firsts: Vec<usize> = own.iter().rev().map(|&g| sv.start[g]).collect();
+        coords.dissection = Some(firsts.clone().into());
+        let want: Vec<usize> = own.iter().rev().copied().collect();
+        assert_eq!(geometric_groups(&sv, &coords), want);
+        let (perm, used) = permutation(&p, FillOrdering::Geometric, Some(&coords)).unwrap();
+        assert_eq!(
+            (perm.unwrap(), used),
+            (sv.expand(&want), FillOrdering::Geometric)
+        );
+        let mut twice = firsts.clone();
+        twice[1] = twice[0];
+        let mut inside = firsts.clone();
+        inside[3] += 1;
+        for bad in [twice, firsts[1..].to_vec(), inside] {
+            coords.dissection = Some(bad.into());
+            assert_eq!(geometric_groups(&sv, &coords), own);
+        }
+    }
+
     #[cfg(not(feature = "metis"))]
     #[test]
     fn metis_without_the_feature_is_a_clear_error() {
@@ -947,8 +1037,8 @@ pub(crate) mod tests {
     #[test]
     fn geometric_without_positions_is_a_clear_error() {
         let p = grid(2, 2, 2);
-        let short = grid_coords(2, 1, 2);
-        for coords in [None, Some(&short[..])] {
+        let short: Coordinates = grid_coords(2, 1, 2).into();
+        for coords in [None, Some(&short)] {
             let e = permutation(&p, FillOrdering::Geometric, coords).unwrap_err();
             assert!(format!("{e}").contains("vertex positions"), "{e}");
         }
@@ -962,7 +1052,7 @@ pub(crate) mod tests {
         use faer::sparse::linalg::cholesky::{SymmetricOrdering, factorize_symbolic_cholesky};
         let (nx, ny) = (40, 40);
         let p = grid(nx, ny, 2);
-        let coords = grid_coords(nx, ny, 2);
+        let coords: Coordinates = grid_coords(nx, ny, 2).into();
         let fill = |o: FillOrdering| {
             let perm = permutation(&p, o, Some(&coords)).unwrap().0.unwrap();
             let inv = ecc_mesh::dissection::inverse_permutation(&perm);

@@ -59,6 +59,37 @@ pub struct NewtonSolver<const D: usize> {
     coords: Option<Coordinates>,
 }
 
+/// Vertex positions and, when computed already, a nested dissection of
+/// the vertices ([`NewtonSolver::with_dissected_geometry`]).
+type Geometry<'a> = (&'a [[f64; 3]], Option<&'a [usize]>);
+
+/// The [`Coordinates`] of the unknowns of `dofs` (the assembler's
+/// renumbered order) at the vertex `positions`, with the vertex
+/// `dissection` as the first unknown of each of its vertices that has one.
+fn coordinates<const D: usize>(
+    dofs: &DofMap,
+    positions: &[[f64; 3]],
+    dissection: Option<&[usize]>,
+) -> Coordinates {
+    let n = dofs.n_unknowns();
+    let vertex = |u: usize| dofs.dof(u) / D;
+    let at: Vec<[f64; 3]> = (0..n).map(|u| positions[vertex(u)]).collect();
+    let dissection = dissection.map(|order| {
+        let mut first = vec![usize::MAX; positions.len()];
+        for u in (0..n).rev() {
+            first[vertex(u)] = u;
+        }
+        order
+            .iter()
+            .filter_map(|&v| first.get(v).copied().filter(|&u| u != usize::MAX))
+            .collect()
+    });
+    Coordinates {
+        at: at.into(),
+        dissection,
+    }
+}
+
 impl<const D: usize> NewtonSolver<D> {
     /// Solver with whole vertices fixed (`fixed` may be empty).
     pub fn new(
@@ -96,23 +127,42 @@ impl<const D: usize> NewtonSolver<D> {
             dofs.n_vertices(),
             positions.len(),
         )?;
-        Self::build(terms, dofs, params, Some(positions))
+        Self::build(terms, dofs, params, Some((positions, None)))
+    }
+
+    /// [`NewtonSolver::with_geometry`] with a nested dissection of the
+    /// vertex graph at `positions` computed already (`dissection[new] =
+    /// vertex`, e.g. `ecc_mesh::dissection::mesh_dissection`, shared with the
+    /// Tutte start), which the `geometric` ordering then takes instead of
+    /// dissecting the same graph again
+    /// ([`crate::linear::ordering::Coordinates::dissection`]). Only the fill
+    /// depends on it: a dissection that is not one of the solver's vertex
+    /// groups is not used.
+    pub fn with_dissected_geometry(
+        terms: Vec<Box<dyn Term<D>>>,
+        dofs: DofMap,
+        params: NewtonParams,
+        positions: &[[f64; 3]],
+        dissection: &[usize],
+    ) -> Result<Self, FemError> {
+        FemError::check_len(
+            "vertex positions for the ordering",
+            dofs.n_vertices(),
+            positions.len(),
+        )?;
+        Self::build(terms, dofs, params, Some((positions, Some(dissection))))
     }
 
     fn build(
         terms: Vec<Box<dyn Term<D>>>,
         dofs: DofMap,
         params: NewtonParams,
-        positions: Option<&[[f64; 3]]>,
+        geometry: Option<Geometry<'_>>,
     ) -> Result<Self, FemError> {
         let nv = dofs.n_vertices();
         let assembler = Assembler::new(&terms, dofs)?;
         let pattern = assembler.pattern();
-        // unknowns in the assembler's (renumbered) order
-        let coords: Option<Coordinates> = positions.map(|p| {
-            let dofs = assembler.dofs();
-            (0..dofs.n_unknowns()).map(|u| p[dofs.dof(u) / D]).collect()
-        });
+        let coords = geometry.map(|(p, d)| coordinates::<D>(assembler.dofs(), p, d));
         let linear = LinearSystem::with_geometry(
             pattern,
             params.linear_solver,

@@ -142,13 +142,35 @@ pub(super) fn nested_dissection(a: &SparseColMat<usize, f64>, pos: &[[f64; 3]]) 
     crate::dissection::nested_dissection(graph, pos)
 }
 
-/// Solve the symmetric system in place by Cholesky under the dissection
-/// ordering; `Ok(false)` when it is not positive definite.
-pub(super) fn solve_cholesky(sys: &mut System, pos: &[[f64; 3]]) -> Result<bool, TutteError> {
+/// The vertex order `order` (`order[new] = old vertex`) restricted to the
+/// `m` interior unknowns (`interior[v]`, `usize::MAX` on the boundary), or
+/// `None` unless `order` is a permutation of the vertices. Dropping the
+/// boundary keeps a nested dissection one: a fill path among the interior
+/// vertices is one in the whole graph.
+pub(super) fn interior_order(order: &[usize], interior: &[usize], m: usize) -> Option<Vec<usize>> {
+    if order.len() != interior.len() {
+        return None;
+    }
+    let mut seen = vec![false; order.len()];
+    let mut perm = Vec::with_capacity(m);
+    for &v in order {
+        if std::mem::replace(seen.get_mut(v)?, true) {
+            return None;
+        }
+        if interior[v] != usize::MAX {
+            perm.push(interior[v]);
+        }
+    }
+    Some(perm)
+}
+
+/// Solve the symmetric system in place by Cholesky in the fill-reducing
+/// order `perm` (`perm[new] = old`); `Ok(false)` when it is not positive
+/// definite.
+pub(super) fn solve_cholesky(sys: &mut System, perm: &[usize]) -> Result<bool, TutteError> {
     let m = sys.a.nrows();
-    let perm = nested_dissection(&sys.a, pos);
-    let inv = crate::dissection::inverse_permutation(&perm);
-    let ordering = SymmetricOrdering::Custom(PermRef::new_checked(&perm, &inv, m));
+    let inv = crate::dissection::inverse_permutation(perm);
+    let ordering = SymmetricOrdering::Custom(PermRef::new_checked(perm, &inv, m));
     let symbolic = factorize_symbolic_cholesky(
         sys.a.symbolic(),
         Side::Lower,
@@ -259,7 +281,8 @@ mod tests {
     fn cholesky_and_lu_agree() {
         let (mut a, pos) = disk_system(20);
         let (mut b, _) = disk_system(20);
-        assert!(solve_cholesky(&mut a, &pos).unwrap());
+        let perm = nested_dissection(&a.a, &pos);
+        assert!(solve_cholesky(&mut a, &perm).unwrap());
         solve_lu(&mut b).unwrap();
         for r in 0..pos.len() {
             for c in 0..2 {

@@ -47,7 +47,28 @@ pub struct TutteEmbedding {
 /// embedding with flipped triangles is returned inside
 /// [`TutteError::Flipped`] (nothing is lost). See the module docs.
 pub fn tutte_embedding(mesh: &TriMesh, weights: TutteWeights) -> Result<Vec<[f64; 2]>, TutteError> {
-    let e = tutte_embedding_report(mesh, weights)?;
+    bijective(report(mesh, weights, None)?)
+}
+
+/// [`tutte_embedding`] factorising the interior system (uniform or
+/// cotangent weights) in a fill-reducing `order` of the mesh's vertices
+/// computed already (`order[new] = old`, e.g.
+/// [`crate::dissection::mesh_dissection`], which the Newton solver's
+/// `geometric` ordering can share) restricted to the interior vertices,
+/// instead of dissecting the interior graph again. An `order` that is not a
+/// permutation of the vertices is not used (the interior is dissected as by
+/// [`tutte_embedding`]); mean-value weights (LU) do not use it.
+pub fn tutte_embedding_in_order(
+    mesh: &TriMesh,
+    weights: TutteWeights,
+    order: &[usize],
+) -> Result<Vec<[f64; 2]>, TutteError> {
+    bijective(report(mesh, weights, Some(order))?)
+}
+
+/// The map of `e`, or [`TutteError::Flipped`] (holding it) when it flips
+/// a triangle.
+fn bijective(e: TutteEmbedding) -> Result<Vec<[f64; 2]>, TutteError> {
     match e.flipped.first() {
         None => Ok(e.uv),
         Some(&first) => Err(TutteError::Flipped {
@@ -67,6 +88,16 @@ pub fn tutte_embedding(mesh: &TriMesh, weights: TutteWeights) -> Result<Vec<[f64
 pub fn tutte_embedding_report(
     mesh: &TriMesh,
     weights: TutteWeights,
+) -> Result<TutteEmbedding, TutteError> {
+    report(mesh, weights, None)
+}
+
+/// [`tutte_embedding_report`], in the vertex `order` when given
+/// ([`tutte_embedding_in_order`]).
+fn report(
+    mesh: &TriMesh,
+    weights: TutteWeights,
+    order: Option<&[usize]>,
 ) -> Result<TutteEmbedding, TutteError> {
     let tris = &mesh.triangles;
     let pos = &mesh.positions;
@@ -106,7 +137,7 @@ pub fn tutte_embedding_report(
         }
     }
     if m > 0 {
-        solve_interior(mesh, weights, &interior, &mut uv, m)?;
+        solve_interior(mesh, weights, (&interior, order), &mut uv, m)?;
     }
     let flipped = tris
         .iter()
@@ -145,11 +176,12 @@ fn place_on_circle(
 }
 
 /// Assemble `L_II u_I = −L_IB u_B` and solve for both coordinates
-/// (see [`linear`]).
+/// (see [`linear`]); `interior[v]` is v's unknown (`usize::MAX` on the
+/// boundary), `order` the vertex order to factorise in, if any.
 fn solve_interior(
     mesh: &TriMesh,
     weights: TutteWeights,
-    interior: &[usize],
+    (interior, order): (&[usize], Option<&[usize]>),
     uv: &mut [[f64; 2]],
     m: usize,
 ) -> Result<(), TutteError> {
@@ -167,14 +199,20 @@ fn solve_interior(
     let mut sys = linear::assemble(&each, interior, uv, m)?;
     let symmetric = matches!(weights, TutteWeights::Uniform | TutteWeights::Cotangent);
     let solved = if symmetric {
-        let mut pos = vec![[0.0; 3]; m];
-        for (v, &r) in interior.iter().enumerate() {
-            if r != usize::MAX {
-                pos[r] = mesh.positions[v];
+        let perm = match order.and_then(|o| linear::interior_order(o, interior, m)) {
+            Some(perm) => perm,
+            None => {
+                let mut pos = vec![[0.0; 3]; m];
+                for (v, &r) in interior.iter().enumerate() {
+                    if r != usize::MAX {
+                        pos[r] = mesh.positions[v];
+                    }
+                }
+                linear::nested_dissection(&sys.a, &pos)
             }
-        }
+        };
         // not positive definite (cotangent): use LU
-        linear::solve_cholesky(&mut sys, &pos)?
+        linear::solve_cholesky(&mut sys, &perm)?
     } else {
         false
     };
