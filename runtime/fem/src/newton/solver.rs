@@ -122,12 +122,7 @@ impl<const D: usize> NewtonSolver<D> {
         params: NewtonParams,
         positions: &[[f64; 3]],
     ) -> Result<Self, FemError> {
-        FemError::check_len(
-            "vertex positions for the ordering",
-            dofs.n_vertices(),
-            positions.len(),
-        )?;
-        Self::build(terms, dofs, params, Some((positions, None)))
+        Self::positioned(terms, dofs, params, (positions, None))
     }
 
     /// [`NewtonSolver::with_geometry`] with a nested dissection of the
@@ -145,12 +140,23 @@ impl<const D: usize> NewtonSolver<D> {
         positions: &[[f64; 3]],
         dissection: &[usize],
     ) -> Result<Self, FemError> {
+        Self::positioned(terms, dofs, params, (positions, Some(dissection)))
+    }
+
+    /// [`NewtonSolver::build`] with `geometry`, whose positions must be one
+    /// per vertex.
+    fn positioned(
+        terms: Vec<Box<dyn Term<D>>>,
+        dofs: DofMap,
+        params: NewtonParams,
+        geometry: Geometry<'_>,
+    ) -> Result<Self, FemError> {
         FemError::check_len(
             "vertex positions for the ordering",
             dofs.n_vertices(),
-            positions.len(),
+            geometry.0.len(),
         )?;
-        Self::build(terms, dofs, params, Some((positions, Some(dissection))))
+        Self::build(terms, dofs, params, Some(geometry))
     }
 
     fn build(

@@ -9,8 +9,11 @@
 //!   supernodal) under a **geometric nested dissection** ordering
 //!   ([`crate::dissection`], shared with the Newton solver's `geometric`
 //!   ordering; for a planar mesh O(n log n) fill and O(n^{3/2})
-//!   flops). A system that is not positive definite (cotangent weights with
-//!   obtuse angles) falls back to LU.
+//!   flops): of the interior graph, or the whole mesh's dissection given
+//!   by the caller restricted to the interior
+//!   ([`crate::tutte_embedding_in_order`]: the parameterisation computes
+//!   one dissection for both). A system that is not positive definite
+//!   (cotangent weights with obtuse angles) falls back to LU.
 //! * **Mean-value weights** (not symmetric): sparse LU (faer).
 //!
 //! Measured (`cargo run --release -p ecc-mesh --example setup_timing`, the

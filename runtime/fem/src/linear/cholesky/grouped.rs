@@ -284,18 +284,24 @@ mod tests {
         )
     }
 
-    /// Unrelaxed, the expanded supernodes of the vertex graph are exactly
-    /// those of faer's analysis of the scalar pattern, with vertices of one
-    /// size or of several (fixed components).
-    #[test]
-    fn expanded_vertex_supernodes_are_the_scalar_ones() {
-        let patterns = [
+    /// 2D, 3D and scalar grids, and grids with vertices of one size and of
+    /// another ([`masked_grid`]).
+    fn test_patterns() -> [Pattern; 5] {
+        [
             grid(9, 9, 2),
             grid(6, 6, 3),
             grid(12, 12, 1),
             masked_grid(9, 2),
             masked_grid(7, 3),
-        ];
+        ]
+    }
+
+    /// Unrelaxed, the expanded supernodes of the vertex graph are exactly
+    /// those of faer's analysis of the scalar pattern, with vertices of one
+    /// size or of several (fixed components).
+    #[test]
+    fn expanded_vertex_supernodes_are_the_scalar_ones() {
+        let patterns = test_patterns();
         for (case, p) in patterns.iter().enumerate() {
             let (unknowns, n_p) = scrambled_vertices(p, 3);
             let half = grouped(p, &unknowns, n_p).unwrap();
@@ -326,13 +332,7 @@ mod tests {
     /// and S of several sizes, and vertices in scrambled orders.
     #[test]
     fn vertex_lower_block_is_the_entry_wise_one() {
-        let patterns = [
-            grid(9, 9, 2),
-            grid(6, 6, 3),
-            grid(12, 12, 1),
-            masked_grid(9, 2),
-            masked_grid(7, 3),
-        ];
+        let patterns = test_patterns();
         for (case, p) in patterns.iter().enumerate() {
             for seed in [1, 3, 11] {
                 let (unknowns, n_p) = scrambled_vertices(p, seed);
