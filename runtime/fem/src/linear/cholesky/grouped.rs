@@ -34,6 +34,19 @@ struct LocalGroups {
     block: Vec<usize>,
 }
 
+impl LocalGroups {
+    /// The local vertex of each of `blocks`' vertex blocks, `usize::MAX`
+    /// for those outside the half.
+    fn local_of_blocks(&self, blocks: &VertexBlocks) -> Vec<usize> {
+        let mut local = vec![usize::MAX; blocks.start.len() - 1];
+        self.block
+            .iter()
+            .enumerate()
+            .for_each(|(g, &b)| local[b] = g);
+        local
+    }
+}
+
 /// The half's unknowns `unknowns` as whole vertex blocks, each block's
 /// unknowns consecutive and ascending, and P (the first `n_p`) made of
 /// whole blocks; `None` otherwise.
@@ -62,12 +75,7 @@ fn local_groups(blocks: &VertexBlocks, unknowns: &[usize], n_p: usize) -> Option
 /// Upper CSC (pointers, rows) of the vertex graph of the local groups.
 fn group_pattern(blocks: &VertexBlocks, groups: &LocalGroups) -> (Vec<usize>, Vec<usize>) {
     let ng = groups.block.len();
-    let mut local = vec![usize::MAX; blocks.start.len() - 1];
-    groups
-        .block
-        .iter()
-        .enumerate()
-        .for_each(|(g, &b)| local[b] = g);
+    let local = groups.local_of_blocks(blocks);
     let rows = |g: usize| {
         let b = groups.block[g];
         blocks.adj[blocks.adj_ptr[b]..blocks.adj_ptr[b + 1]]
@@ -174,12 +182,7 @@ pub(super) fn lower_p_block(
 ) -> (Vec<usize>, Vec<usize>, Vec<usize>) {
     let Grouped { blocks, groups } = half;
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    let mut local = vec![usize::MAX; blocks.start.len() - 1];
-    groups
-        .block
-        .iter()
-        .enumerate()
-        .for_each(|(g, &b)| local[b] = g);
+    let local = groups.local_of_blocks(blocks);
     let n_pg = groups.start.partition_point(|&s| s < n_p);
     let size = |b: usize| blocks.start[b + 1] - blocks.start[b];
     let neighbours = |b: usize| &blocks.adj[blocks.adj_ptr[b]..blocks.adj_ptr[b + 1]];
