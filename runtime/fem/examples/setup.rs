@@ -10,9 +10,8 @@
 //! wall seconds and the process's CPU seconds (user + system, all threads,
 //! from `/proc/self/stat`) and the Newton factor's size and flops (which
 //! the shared vertex dissection must not worsen), then the best of each.
-//! CPU time is what a busy
-//! machine cannot hide: on two cores setup's wall time is at least half of
-//! it.
+//! CPU time is what a busy machine cannot hide: on two cores setup's wall
+//! time is at least half of it.
 
 use std::sync::Arc;
 use std::time::Instant;

@@ -21,7 +21,8 @@
 //! vertex graph (`ecc_mesh::dissection::mesh_dissection`, on rayon's
 //! threads), which both the Tutte solve (restricted to the interior) and the
 //! Newton solver's `geometric` ordering use instead of each dissecting its
-//! own graph of the same vertices (issue #11, stop 32). Then it runs the
+//! own graph of the same vertices (issue #11, stop 32); only for uniform
+//! and cotangent weights, whose Tutte solve needs a dissection anyway. Then it runs the
 //! Tutte solve (sequential sparse Cholesky, ecc-mesh) on its own thread
 //! while this thread builds the solver (rest frames, pattern, colouring,
 //! symbolic analysis): the two are independent, so the result is
@@ -183,7 +184,13 @@ pub fn prepare<E: Energy<2> + ?Sized + 'static>(
     }
     let weights = opts.tutte;
     let t0 = Instant::now();
-    let order = mesh_dissection(&mesh.positions, &mesh.triangles);
+    // only where the Tutte solve dissects anyway (symmetric weights): with
+    // mean-value weights (LU) the solver dissects its own groups if its
+    // ordering is the geometric one, as before
+    let order = weights
+        .is_symmetric()
+        .then(|| mesh_dissection(&mesh.positions, &mesh.triangles))
+        .flatten();
     let dissection_seconds = t0.elapsed().as_secs_f64();
     let order = order.as_deref();
     let (built, tutte) = std::thread::scope(|scope| {

@@ -144,3 +144,12 @@ pub enum TutteWeights {
     /// on obtuse triangles, so the map may fold.
     Cotangent,
 }
+
+impl TutteWeights {
+    /// Whether the interior system is symmetric (uniform and cotangent
+    /// weights): solved by Cholesky in a nested-dissection order, where
+    /// mean-value weights take a sparse LU.
+    pub fn is_symmetric(self) -> bool {
+        matches!(self, TutteWeights::Uniform | TutteWeights::Cotangent)
+    }
+}

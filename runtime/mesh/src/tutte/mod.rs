@@ -197,8 +197,7 @@ fn solve_interior(
         Ok(())
     };
     let mut sys = linear::assemble(&each, interior, uv, m)?;
-    let symmetric = matches!(weights, TutteWeights::Uniform | TutteWeights::Cotangent);
-    let solved = if symmetric {
+    let solved = if weights.is_symmetric() {
         let perm = match order.and_then(|o| linear::interior_order(o, interior, m)) {
             Some(perm) => perm,
             None => {
