@@ -88,7 +88,7 @@ pub enum FactorizeError {
     /// A non-positive pivot.
     NotPositiveDefinite(NotPositiveDefinite),
     /// The pattern differed from the analysed one and its new symbolic
-    /// analysis failed.
+    /// analysis failed, or the factor's values could not be allocated.
     Symbolic(FemError),
 }
 
@@ -543,7 +543,8 @@ fn factorize_split(
     indefinite_seen: &mut bool,
 ) -> Result<(), FactorizeError> {
     let mut result = split.factorize(values);
-    if result.is_err() && split.is_mixed() && !*indefinite_seen {
+    let broke_down = matches!(result, Err(FactorizeError::NotPositiveDefinite(_)));
+    if broke_down && split.is_mixed() && !*indefinite_seen {
         // single precision broke down: the same matrix in double tells a
         // breakdown of precision (double succeeds: stay double) from an
         // indefinite matrix (double fails too: stay mixed, and report later
@@ -552,12 +553,13 @@ fn factorize_split(
             result = double.factorize(values);
             match result {
                 Ok(()) => *split = double,
-                Err(_) => *indefinite_seen = true,
+                Err(FactorizeError::NotPositiveDefinite(_)) => *indefinite_seen = true,
+                Err(FactorizeError::Symbolic(_)) => {}
             }
         }
     }
     clear_simd(true);
-    result.map_err(|p| FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot: p.0 }))
+    result
 }
 
 impl Plain {

@@ -96,8 +96,6 @@ impl<T> Default for Scratch<T> {
 
 /// The value storage of a half in the scalar `T`, zeroed (see [`zeros`]).
 struct Storage<T> {
-    /// The Pᵢ supernodes' `len` factor values.
-    l: Vec<T>,
     /// Uᵢ, k×k.
     update: Vec<T>,
     /// The solve vector, n entries.
@@ -107,11 +105,10 @@ struct Storage<T> {
 }
 
 impl<T: Real> Storage<T> {
-    fn new(nodes: &[Node], len: usize, k: usize, n: usize) -> Result<Self, FemError> {
+    fn new(nodes: &[Node], k: usize, n: usize) -> Result<Self, FemError> {
         let max_w = nodes.iter().map(|n| n.end - n.start).max().unwrap_or(0);
         let req = cholesky_in_place_scratch::<T>(max_w, Par::Seq, Default::default());
         Ok(Storage {
-            l: zeros(len, "a split factor")?,
             update: zeros(k * k, "the separator block")?,
             work: zeros(n, "the solve")?,
             mem: MemBuffer::try_new(req).map_err(|_| oom("scratch"))?,
@@ -137,8 +134,10 @@ pub(super) struct Half<T: Real> {
     a_ptr: Vec<usize>,
     a_rows: Vec<usize>,
     a_slots: Vec<usize>,
-    /// Factor values of the Pᵢ supernodes.
+    /// Factor values of the Pᵢ supernodes: empty until [`Half::reserve`].
     l: Vec<T>,
+    /// How many values `l` holds once reserved.
+    len: usize,
     /// Uᵢ of (8), k×k column-major, lower triangle.
     pub(super) update: Vec<T>,
     /// Row of a supernode's block holding each local row (scratch).
@@ -305,12 +304,7 @@ impl<T: Real> Half<T> {
             len = node.val + (w + r) * w;
             flops += (0..w).map(|c| ((w - c + r) as f64).powi(2)).sum::<f64>();
         }
-        let Storage {
-            l,
-            update,
-            work,
-            mem,
-        } = Storage::new(&nodes, len, k, n)?;
+        let Storage { update, work, mem } = Storage::new(&nodes, k, n)?;
         Ok(Half {
             unknowns,
             n_p,
@@ -321,7 +315,8 @@ impl<T: Real> Half<T> {
             a_ptr,
             a_rows,
             a_slots,
-            l,
+            l: Vec::new(),
+            len,
             update,
             rel: vec![0; n],
             scratch: Scratch::default(),
@@ -335,14 +330,10 @@ impl<T: Real> Half<T> {
     /// fallback of a mixed-precision factor to double.
     pub(super) fn with_scalar<U: Real>(&self) -> Result<Half<U>, FemError> {
         let (n, k) = (self.unknowns.len(), self.k());
-        let Storage {
-            l,
-            update,
-            work,
-            mem,
-        } = Storage::new(&self.nodes, self.l.len(), k, n)?;
+        let Storage { update, work, mem } = Storage::new(&self.nodes, k, n)?;
         Ok(Half {
-            l,
+            l: Vec::new(),
+            len: self.len,
             update,
             work,
             mem,
@@ -368,12 +359,35 @@ impl<T: Real> Half<T> {
 
     /// Stored factor values (the Pᵢ supernodes).
     pub(super) fn len_val(&self) -> usize {
+        self.len
+    }
+
+    /// Factor values allocated so far (0 before [`Half::reserve`]).
+    #[cfg(test)]
+    pub(super) fn stored(&self) -> usize {
         self.l.len()
+    }
+
+    /// Where the factor values are stored (to tell a reallocation).
+    #[cfg(test)]
+    pub(super) fn stored_at(&self) -> *const T {
+        self.l.as_ptr()
+    }
+
+    /// Allocate (and zero) the factor values if not yet done. They are
+    /// written here, by the first numeric factorisation, not in the
+    /// analysis: see [`super::split::SplitFactor::reserve`].
+    pub(super) fn reserve(&mut self) -> Result<(), FemError> {
+        if self.l.len() != self.len {
+            self.l = zeros(self.len, "a split factor")?;
+        }
+        Ok(())
     }
 
     /// Numeric LLᵀ of the Pᵢ columns of Bᵢ (7) and Uᵢ (8), on this thread;
     /// on a non-positive pivot, its local index.
     pub(super) fn factorize(&mut self, values: &[f64]) -> Result<(), usize> {
+        debug_assert_eq!(self.l.len(), self.len, "factor values not reserved");
         let _flush = T::flush_subnormals();
         for s in 0..self.nodes.len() {
             self.factor_node(s, values)?;

@@ -35,7 +35,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::split::{SplitFactor, SplitPivot};
+use super::FactorizeError;
+use super::split::SplitFactor;
 use super::tree::Tree;
 use crate::error::FemError;
 use crate::pattern::Pattern;
@@ -124,7 +125,7 @@ impl Split {
         }
     }
 
-    pub(super) fn factorize(&mut self, values: &[f64]) -> Result<(), SplitPivot> {
+    pub(super) fn factorize(&mut self, values: &[f64]) -> Result<(), FactorizeError> {
         each!(self, s => s.factorize(values))
     }
 

@@ -73,6 +73,7 @@ use faer::linalg::triangular_solve::{
 use faer::{MatMut, MatRef, Par};
 
 use super::half::Half;
+use super::{FactorizeError, NotPositiveDefinite};
 use super::real::Real;
 use super::tree::{Part, Tree, split};
 use crate::error::FemError;
@@ -82,18 +83,17 @@ use crate::pattern::Pattern;
 /// threads (below, fork/join costs more than the dense kernels gain).
 const DENSE_PARALLEL_MIN: usize = 256;
 
+/// A non-positive pivot at `pivot`.
+fn not_positive(pivot: usize) -> FactorizeError {
+    FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot })
+}
+
 pub(super) fn oom(what: &str) -> FemError {
     FemError::Symbolic(format!("out of memory for {what}"))
 }
 
-/// `len` zeros, or an out-of-memory error naming `what`. The zeros are
-/// written here, in the analysis (the two halves are analysed at once), so
-/// every page is touched before the first numeric factorisation. Measured on
-/// the 1M-triangle disk (2026-12-02): storage left untouched (`calloc`) made
-/// the first factorisation 3.6 s against 1.5 s for the later ones, and
-/// backing it with transparent huge pages (`madvise`) did not help (direct
-/// compaction on fault); touched here it costs ≈ 0.35 s of setup and the
-/// first factorisation takes 1.65 s.
+/// `len` zeros, or an out-of-memory error naming `what`; every page is
+/// written here (see [`SplitFactor::reserve`] for when).
 pub(super) fn zeros<T: Clone + Default>(len: usize, what: &str) -> Result<Vec<T>, FemError> {
     let mut v = Vec::new();
     v.try_reserve_exact(len).map_err(|_| oom(what))?;
@@ -185,10 +185,6 @@ pub(crate) struct SplitFactor<T: Real> {
     /// See [`SplitFactor::phases`].
     phases: [f64; 4],
 }
-
-/// A non-positive pivot of the split factorisation, as a position in the
-/// order (P₁, P₂, S).
-pub(crate) struct SplitPivot(pub usize);
 
 impl<T: Real> SplitFactor<T> {
     /// Split the supernodal tree of the plain analysis `symbolic` of
@@ -332,20 +328,44 @@ impl<T: Real> SplitFactor<T> {
         self.halves[0].flops.max(self.halves[1].flops) + self.dense_flops()
     }
 
-    /// Map a pivot of half `i` (local index) to the order (P₁, P₂, S).
-    fn pivot(&self, i: usize, local: usize) -> SplitPivot {
+    /// A pivot of half `i` (local index) as a position in the order
+    /// (P₁, P₂, S).
+    fn pivot(&self, i: usize, local: usize) -> FactorizeError {
         let (p1, p2) = (self.halves[0].n_p, self.halves[1].n_p);
         let h = &self.halves[i];
-        SplitPivot(if local < h.n_p {
+        not_positive(if local < h.n_p {
             local + if i == 0 { 0 } else { p1 }
         } else {
             p1 + p2 + local - h.n_p
         })
     }
 
+    /// Allocate and zero both halves' factor values, each on its thread, if
+    /// not yet done: the first [`SplitFactor::factorize`] does.
+    ///
+    /// Not in the analysis, where they were before: there the zeros were
+    /// written while the rest of a parameterisation's setup (its Tutte
+    /// factorisation) ran on the same two cores, and the 2 × 250 MB of the
+    /// 1M-triangle disk took 0.25–1.17 s of wall (first touches of fresh
+    /// pages); written here, with both cores free, 0.12–0.14 s
+    /// (docs/benchmarks/million.md, "Setup at stop 33"). Left to the
+    /// factorisation's own first writes (untouched `calloc` pages) it was
+    /// worse (2026-12-02): 3.6 s for the first factorisation against 1.5 s
+    /// for the later ones; transparent huge pages (`madvise`) did not help
+    /// (direct compaction on fault).
+    fn reserve(&mut self) -> Result<(), FemError> {
+        let [h1, h2] = &mut self.halves;
+        let (r1, r2) = rayon::join(|| h1.reserve(), || h2.reserve());
+        r1.and(r2)
+    }
+
     /// Numeric factorisation of A (upper-triangular `values` on the analysed
-    /// pattern): (2) for both halves at once, then (3) and L_Σ.
-    pub(crate) fn factorize(&mut self, values: &[f64]) -> Result<(), SplitPivot> {
+    /// pattern): (2) for both halves at once, then (3) and L_Σ. A
+    /// non-positive pivot is reported in the order (P₁, P₂, S); storage that
+    /// cannot be allocated ([`SplitFactor::reserve`]) as
+    /// [`FactorizeError::Symbolic`].
+    pub(crate) fn factorize(&mut self, values: &[f64]) -> Result<(), FactorizeError> {
+        self.reserve().map_err(FactorizeError::Symbolic)?;
         let t0 = std::time::Instant::now();
         let [h1, h2] = &mut self.halves;
         let timed = |h: &mut Half<T>| {
@@ -392,7 +412,7 @@ impl<T: Real> SplitFactor<T> {
             Default::default(),
         )
         .map_err(|LltError::NonPositivePivot { index }| {
-            SplitPivot(self.halves[0].n_p + self.halves[1].n_p + index)
+            not_positive(self.halves[0].n_p + self.halves[1].n_p + index)
         })?;
         self.phases = [
             d1,
@@ -682,6 +702,23 @@ pub(crate) mod tests {
         assert_eq!(solve(&mut converted), solve(&mut analyse(&p).unwrap()));
         let halves: usize = single.halves.iter().map(|h| h.len_val()).sum();
         assert_eq!(converted.bytes(), single.bytes() + 4 * halves);
+    }
+
+    /// The analysis allocates no factor values; the first factorisation
+    /// does, all of them, and later ones reuse them.
+    #[test]
+    fn the_first_factorisation_allocates_the_factor_values() {
+        let p = grid(30, 20, 2);
+        let mut split = analyse::<f32>(&p).unwrap();
+        let stored = |s: &SplitFactor<f32>| s.halves.each_ref().map(|h| h.stored());
+        assert_eq!(stored(&split), [0, 0]);
+        let want = split.halves.each_ref().map(|h| h.len_val());
+        assert!(want.iter().all(|&l| l > 0));
+        split.factorize(&random_spd(&p, 1)).ok().unwrap();
+        assert_eq!(stored(&split), want);
+        let before = split.halves.each_ref().map(|h| h.stored_at());
+        split.factorize(&random_spd(&p, 2)).ok().unwrap();
+        assert_eq!(split.halves.each_ref().map(|h| h.stored_at()), before);
     }
 
     #[test]
