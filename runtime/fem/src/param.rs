@@ -17,18 +17,19 @@
 //! 5. **Solve.** Projected Newton with no fixed vertex: the translation null
 //!    space is handled by the solver's diagonal shift.
 //!
-//! Setup first computes one geometric nested dissection of the mesh's
-//! vertex graph (`ecc_mesh::dissection::mesh_dissection`, on rayon's
-//! threads), which both the Tutte solve (restricted to the interior) and the
-//! Newton solver's `geometric` ordering use instead of each dissecting its
-//! own graph of the same vertices (issue #11, stop 32); only for uniform
-//! and cotangent weights, whose Tutte solve needs a dissection anyway. Then it runs the
-//! Tutte solve (sequential sparse Cholesky, ecc-mesh) on its own thread
-//! while this thread builds the solver (rest frames, pattern, colouring,
-//! symbolic analysis): the two are independent, so the result is
+//! Setup runs the Tutte solve (sequential sparse Cholesky, ecc-mesh) on its
+//! own thread while this thread builds the solver (rest frames, pattern,
+//! colouring, symbolic analysis): the two are independent, so the result is
 //! bit-identical to running them one after the other, and on two cores the
 //! setup costs about the longer of the two instead of their sum (issue #11:
-//! on the 1M-triangle disk the Tutte solve was ≈ 1/3 of the setup).
+//! on the 1M-triangle disk the Tutte solve was ≈ 1/3 of the setup). Both
+//! use one geometric nested dissection of the mesh's vertex graph
+//! (`ecc_mesh::dissection::mesh_dissection`, on rayon's threads) instead of
+//! each dissecting its own graph of the same vertices (stop 32): this
+//! thread computes it first, while the Tutte thread checks the mesh and
+//! assembles its system, and hands it over when the Tutte solve asks
+//! (stop 33); only for uniform and cotangent weights, whose Tutte solve
+//! needs a dissection anyway.
 
 use std::ops::ControlFlow;
 use std::sync::Arc;
@@ -183,30 +184,38 @@ pub fn prepare<E: Energy<2> + ?Sized + 'static>(
         return Err(FemError::EmptyMesh);
     }
     let weights = opts.tutte;
-    let t0 = Instant::now();
-    // only where the Tutte solve dissects anyway (symmetric weights): with
-    // mean-value weights (LU) the solver dissects its own groups if its
-    // ordering is the geometric one, as before
-    let order = weights
-        .is_symmetric()
-        .then(|| mesh_dissection(&mesh.positions, &mesh.triangles))
-        .flatten();
-    let dissection_seconds = t0.elapsed().as_secs_f64();
-    let order = order.as_deref();
     let (built, tutte) = std::thread::scope(|scope| {
+        // the shared dissection reaches the Tutte thread once computed here,
+        // while it checks the mesh and assembles its system; only for
+        // symmetric weights, whose Tutte solve dissects anyway (with
+        // mean-value weights, LU, the solver dissects its own groups if its
+        // ordering is the geometric one)
+        let (send, receive) = std::sync::mpsc::sync_channel::<Option<Arc<[usize]>>>(1);
         let tutte = scope.spawn(move || {
             let t1 = Instant::now();
-            let uv = match order {
-                Some(order) => tutte_embedding_in_order(mesh, weights, order),
-                None => tutte_embedding(mesh, weights),
+            let uv = if weights.is_symmetric() {
+                // a sender gone without sending (a panic) dissects here
+                tutte_embedding_in_order(mesh, weights, || receive.recv().ok().flatten())
+            } else {
+                tutte_embedding(mesh, weights)
             };
             (uv, t1.elapsed().as_secs_f64())
         });
-        let built = build_solver(mesh, energy, opts, order);
+        let t0 = Instant::now();
+        let order: Option<Arc<[usize]>> = weights
+            .is_symmetric()
+            .then(|| mesh_dissection(&mesh.positions, &mesh.triangles))
+            .flatten()
+            .map(Arc::from);
+        // fails only if the Tutte thread has stopped already (a mesh it
+        // rejects): nothing then waits for the order
+        let _ = send.send(order.clone());
+        let dissection_seconds = t0.elapsed().as_secs_f64();
+        let built = build_solver(mesh, energy, opts, order.as_deref());
+        let built = built.map(|(solver, scales, s)| (solver, scales, s + dissection_seconds));
         (built, tutte.join())
     });
-    let (solver, scales, solver_seconds) = built?;
-    let setup_seconds = dissection_seconds + solver_seconds;
+    let (solver, scales, setup_seconds) = built?;
     let (uv, tutte_seconds) = match tutte {
         Ok(r) => r,
         // the Tutte thread panicked: hand the panic on unchanged
@@ -391,7 +400,7 @@ mod tests {
         let opts = ParamOptions::default();
         let prob = prepare(&mesh, Arc::new(SymmetricDirichlet), &opts).unwrap();
         let order = mesh_dissection(&mesh.positions, &mesh.triangles).unwrap();
-        let uv = tutte_embedding_in_order(&mesh, opts.tutte, &order).unwrap();
+        let uv = tutte_embedding_in_order(&mesh, opts.tutte, || Some(order)).unwrap();
         let want = tutte_start(&mesh, uv, prob.rest_area).unwrap();
         assert_eq!(prob.start, want);
         let own = tutte_embedding(&mesh, opts.tutte).unwrap();

@@ -114,6 +114,29 @@ fn generated_disks_embed_bijectively_with_all_weights() {
     }
 }
 
+/// The order is asked for only where it is used: not with mean-value
+/// weights (LU), not for a mesh rejected before the solve; with uniform
+/// weights, once.
+#[test]
+fn the_order_is_asked_for_only_when_used() {
+    let disk = disk_tri(6, 1.0);
+    let never = || -> Option<Vec<usize>> { panic!("the order was asked for") };
+    let mv = tutte_embedding_in_order(&disk, TutteWeights::MeanValue, never).unwrap();
+    assert_eq!(mv, tutte_embedding(&disk, TutteWeights::MeanValue).unwrap());
+    let mut two = disk.clone();
+    two.triangles.truncate(1);
+    two.positions.push([9.0, 9.0, 9.0]);
+    assert!(tutte_embedding_in_order(&two, TutteWeights::Uniform, never).is_err());
+    let mut asked = 0;
+    let uv = tutte_embedding_in_order(&disk, TutteWeights::Uniform, || {
+        asked += 1;
+        None::<Vec<usize>>
+    })
+    .unwrap();
+    assert_eq!(asked, 1);
+    assert_eq!(uv, tutte_embedding(&disk, TutteWeights::Uniform).unwrap());
+}
+
 /// In the mesh's own dissection (shared with the Newton solver) the map
 /// is the one in the interior's dissection, to rounding, on real disks and
 /// with every weight; an order that is not a permutation of the vertices is
@@ -134,7 +157,7 @@ fn a_shared_vertex_order_gives_the_same_map() {
                 Ok(uv) | Err(TutteError::Flipped { uv, .. }) => uv,
                 Err(e) => panic!("case {case} {w:?}: {e}"),
             };
-            let shared = match tutte_embedding_in_order(mesh, w, &order) {
+            let shared = match tutte_embedding_in_order(mesh, w, || Some(&order)) {
                 Ok(uv) | Err(TutteError::Flipped { uv, .. }) => uv,
                 Err(e) => panic!("case {case} {w:?}: {e}"),
             };
@@ -144,8 +167,15 @@ fn a_shared_vertex_order_gives_the_same_map() {
                 .map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()))
                 .fold(0.0, f64::max);
             assert!(gap < 1e-12, "case {case} {w:?}: maps differ by {gap}");
+            let none = tutte_embedding_in_order(mesh, w, || None::<Vec<usize>>);
+            match none {
+                Ok(uv) | Err(TutteError::Flipped { uv, .. }) => {
+                    assert!(uv == own, "case {case} {w:?}: no order is not the own one")
+                }
+                Err(e) => panic!("case {case} {w:?}: {e}"),
+            }
             for bad in [&repeated[..], &order[1..], &beyond[..]] {
-                match tutte_embedding_in_order(mesh, w, bad) {
+                match tutte_embedding_in_order(mesh, w, || Some(bad)) {
                     Ok(uv) | Err(TutteError::Flipped { uv, .. }) => {
                         assert!(uv == own, "case {case} {w:?}: a bad order was used")
                     }

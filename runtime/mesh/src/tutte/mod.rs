@@ -47,7 +47,7 @@ pub struct TutteEmbedding {
 /// embedding with flipped triangles is returned inside
 /// [`TutteError::Flipped`] (nothing is lost). See the module docs.
 pub fn tutte_embedding(mesh: &TriMesh, weights: TutteWeights) -> Result<Vec<[f64; 2]>, TutteError> {
-    bijective(report(mesh, weights, None)?)
+    bijective(report(mesh, weights, no_order)?)
 }
 
 /// [`tutte_embedding`] factorising the interior system (uniform or
@@ -58,12 +58,21 @@ pub fn tutte_embedding(mesh: &TriMesh, weights: TutteWeights) -> Result<Vec<[f64
 /// instead of dissecting the interior graph again. An `order` that is not a
 /// permutation of the vertices is not used (the interior is dissected as by
 /// [`tutte_embedding`]); mean-value weights (LU) do not use it.
-pub fn tutte_embedding_in_order(
+///
+/// `order` is asked for only once the mesh is checked and the system
+/// assembled (and not at all for mean-value weights), so a caller can
+/// compute it meanwhile on another thread; `None` dissects the interior.
+pub fn tutte_embedding_in_order<O: AsRef<[usize]>>(
     mesh: &TriMesh,
     weights: TutteWeights,
-    order: &[usize],
+    order: impl FnOnce() -> Option<O>,
 ) -> Result<Vec<[f64; 2]>, TutteError> {
-    bijective(report(mesh, weights, Some(order))?)
+    bijective(report(mesh, weights, order)?)
+}
+
+/// No vertex order given: the interior is dissected.
+fn no_order() -> Option<&'static [usize]> {
+    None
 }
 
 /// The map of `e`, or [`TutteError::Flipped`] (holding it) when it flips
@@ -89,15 +98,15 @@ pub fn tutte_embedding_report(
     mesh: &TriMesh,
     weights: TutteWeights,
 ) -> Result<TutteEmbedding, TutteError> {
-    report(mesh, weights, None)
+    report(mesh, weights, no_order)
 }
 
 /// [`tutte_embedding_report`], in the vertex `order` when given
 /// ([`tutte_embedding_in_order`]).
-fn report(
+fn report<O: AsRef<[usize]>>(
     mesh: &TriMesh,
     weights: TutteWeights,
-    order: Option<&[usize]>,
+    order: impl FnOnce() -> Option<O>,
 ) -> Result<TutteEmbedding, TutteError> {
     let tris = &mesh.triangles;
     let pos = &mesh.positions;
@@ -177,11 +186,12 @@ fn place_on_circle(
 
 /// Assemble `L_II u_I = −L_IB u_B` and solve for both coordinates
 /// (see [`linear`]); `interior[v]` is v's unknown (`usize::MAX` on the
-/// boundary), `order` the vertex order to factorise in, if any.
-fn solve_interior(
+/// boundary), `order` the vertex order to factorise in, if any (asked for
+/// after the assembly).
+fn solve_interior<O: AsRef<[usize]>>(
     mesh: &TriMesh,
     weights: TutteWeights,
-    (interior, order): (&[usize], Option<&[usize]>),
+    (interior, order): (&[usize], impl FnOnce() -> Option<O>),
     uv: &mut [[f64; 2]],
     m: usize,
 ) -> Result<(), TutteError> {
@@ -198,7 +208,7 @@ fn solve_interior(
     };
     let mut sys = linear::assemble(&each, interior, uv, m)?;
     let solved = if weights.is_symmetric() {
-        let perm = match order.and_then(|o| linear::interior_order(o, interior, m)) {
+        let perm = match order().and_then(|o| linear::interior_order(o.as_ref(), interior, m)) {
             Some(perm) => perm,
             None => {
                 let mut pos = vec![[0.0; 3]; m];
