@@ -73,9 +73,9 @@ use faer::linalg::triangular_solve::{
 use faer::{MatMut, MatRef, Par};
 
 use super::half::Half;
-use super::{FactorizeError, NotPositiveDefinite};
 use super::real::Real;
 use super::tree::{Part, Tree, split};
+use super::{FactorizeError, NotPositiveDefinite};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 
