@@ -92,6 +92,13 @@ pub enum FactorizeError {
     Symbolic(FemError),
 }
 
+impl FactorizeError {
+    /// A non-positive pivot at `pivot` (a column in the permuted order).
+    pub(crate) fn not_positive(pivot: usize) -> Self {
+        FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot })
+    }
+}
+
 /// Symbolic structure, factor values and scratch for one pattern.
 pub struct CholeskyFactor {
     /// The factorisation of the analysed pattern.
@@ -590,11 +597,7 @@ impl Plain {
                 self.threads.record(self.par, start.elapsed().as_secs_f64());
                 Ok(())
             }
-            Err(LltError::NonPositivePivot { index }) => {
-                Err(FactorizeError::NotPositiveDefinite(NotPositiveDefinite {
-                    pivot: index,
-                }))
-            }
+            Err(LltError::NonPositivePivot { index }) => Err(FactorizeError::not_positive(index)),
         }
     }
 

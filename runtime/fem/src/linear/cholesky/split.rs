@@ -72,21 +72,16 @@ use faer::linalg::triangular_solve::{
 };
 use faer::{MatMut, MatRef, Par};
 
+use super::FactorizeError;
 use super::half::Half;
 use super::real::Real;
 use super::tree::{Part, Tree, split};
-use super::{FactorizeError, NotPositiveDefinite};
 use crate::error::FemError;
 use crate::pattern::Pattern;
 
 /// Separators at least this many unknowns wide factorise Σ on the pool's
 /// threads (below, fork/join costs more than the dense kernels gain).
 const DENSE_PARALLEL_MIN: usize = 256;
-
-/// A non-positive pivot at `pivot`.
-fn not_positive(pivot: usize) -> FactorizeError {
-    FactorizeError::NotPositiveDefinite(NotPositiveDefinite { pivot })
-}
 
 pub(super) fn oom(what: &str) -> FemError {
     FemError::Symbolic(format!("out of memory for {what}"))
@@ -333,7 +328,7 @@ impl<T: Real> SplitFactor<T> {
     fn pivot(&self, i: usize, local: usize) -> FactorizeError {
         let (p1, p2) = (self.halves[0].n_p, self.halves[1].n_p);
         let h = &self.halves[i];
-        not_positive(if local < h.n_p {
+        FactorizeError::not_positive(if local < h.n_p {
             local + if i == 0 { 0 } else { p1 }
         } else {
             p1 + p2 + local - h.n_p
@@ -412,7 +407,7 @@ impl<T: Real> SplitFactor<T> {
             Default::default(),
         )
         .map_err(|LltError::NonPositivePivot { index }| {
-            not_positive(self.halves[0].n_p + self.halves[1].n_p + index)
+            FactorizeError::not_positive(self.halves[0].n_p + self.halves[1].n_p + index)
         })?;
         self.phases = [
             d1,
