@@ -103,8 +103,8 @@ impl FactorizeError {
 pub struct CholeskyFactor {
     /// The factorisation of the analysed pattern.
     kind: Kind,
-    /// The pattern (column pointers, row indices) `kind` was analysed for.
-    analysed: (Vec<usize>, Vec<usize>),
+    /// The [`Pattern::id`] of the pattern `kind` was analysed for (0: none).
+    analysed: u64,
     /// As asked (the ordering may be `Auto`; reanalyses resolve it again).
     params: CholeskyParams,
     /// The concrete ordering of the current analysis.
@@ -288,10 +288,6 @@ fn flops(symbolic: &SymbolicCholesky<usize>) -> f64 {
     }
 }
 
-fn structure(pattern: &Pattern) -> (Vec<usize>, Vec<usize>) {
-    (pattern.col_ptr().to_vec(), pattern.row_idx().to_vec())
-}
-
 impl CholeskyFactor {
     /// Symbolic analysis of the upper-triangular pattern with the default
     /// [`CholeskyParams`]; allocates the factor storage and all scratch once.
@@ -315,7 +311,7 @@ impl CholeskyFactor {
         let (kind, ordering) = analysis(pattern, params, coords.as_ref())?;
         Ok(CholeskyFactor {
             kind,
-            analysed: structure(pattern),
+            analysed: pattern.id(),
             params,
             ordering,
             coords,
@@ -326,9 +322,11 @@ impl CholeskyFactor {
         })
     }
 
-    /// Whether `pattern` is the one the symbolic analysis was done for.
+    /// Whether `pattern` is the one the symbolic analysis was done for (it
+    /// or a clone: [`Pattern::id`]; an equal pattern built apart is
+    /// analysed again).
     pub fn is_for(&self, pattern: &Pattern) -> bool {
-        self.analysed.0 == pattern.col_ptr() && self.analysed.1 == pattern.row_idx()
+        self.analysed == pattern.id()
     }
 
     /// Redo the symbolic analysis for a new pattern (counted).
@@ -336,7 +334,7 @@ impl CholeskyFactor {
         // drop the old factor first: the new one may be as large; until an
         // analysis succeeds there is no pattern to factorise with
         self.kind = Kind::Missing;
-        self.analysed = (Vec::new(), Vec::new());
+        self.analysed = 0;
         self.factored = false;
         // a dissection computed for the old pattern's graph need not suit
         // the new one's
@@ -346,7 +344,7 @@ impl CholeskyFactor {
         let (kind, ordering) = analysis(pattern, self.params, self.coords.as_ref())?;
         self.ordering = ordering;
         self.kind = kind;
-        self.analysed = structure(pattern);
+        self.analysed = pattern.id();
         self.factored = false;
         self.symbolic_analyses += 1;
         Ok(())
@@ -671,6 +669,28 @@ mod tests {
         }
         assert_eq!(f.symbolic_analyses(), 1);
         assert_eq!(f.numeric_factorizations(), 3);
+    }
+
+    /// A clone of the analysed pattern is the same pattern (no analysis); an
+    /// equal one built apart is analysed again, counted, and solves.
+    #[test]
+    fn a_pattern_is_matched_by_its_id() {
+        let (p, v) = path(30);
+        let mut f = CholeskyFactor::analyze(&p).unwrap();
+        assert!(f.is_for(&p.clone()));
+        f.factorize(&p.clone(), &v).unwrap();
+        assert_eq!(f.symbolic_analyses(), 1);
+        let (q, w) = path(30);
+        assert_eq!((q.col_ptr(), q.row_idx()), (p.col_ptr(), p.row_idx()));
+        assert_ne!(q.id(), p.id());
+        assert!(!f.is_for(&q));
+        f.factorize(&q, &w).unwrap();
+        assert_eq!(f.symbolic_analyses(), 2);
+        let mut x = vec![1.0; 30];
+        assert!(f.solve_in_place(&mut x));
+        let mut ax = vec![0.0; 30];
+        q.sym_matvec(&w, &x, &mut ax);
+        assert!(ax.iter().all(|a| (a - 1.0).abs() < 1e-12));
     }
 
     #[test]

@@ -248,17 +248,17 @@ impl Supervariables {
         start.push(nb);
         let ng = start.len() - 1;
         let mut adj_ptr = vec![0usize; ng + 1];
-        let mut gadj = Vec::new();
+        let mut gadj = Vec::with_capacity(adj.len());
         for g in 0..ng {
             let first = start[g];
-            // all members share the closed neighbourhood: read the first's
-            let mut nb: Vec<usize> = adj[ptr[first]..ptr[first + 1]]
-                .iter()
-                .map(|&i| group[i])
-                .filter(|&h| h != g)
-                .collect();
-            nb.dedup(); // sorted blocks map to sorted groups
-            gadj.extend_from_slice(&nb);
+            // all members share the closed neighbourhood: read the first's;
+            // sorted blocks map to sorted groups, so a repeat is the last
+            let at = gadj.len();
+            for h in adj[ptr[first]..ptr[first + 1]].iter().map(|&i| group[i]) {
+                if h != g && gadj[at..].last() != Some(&h) {
+                    gadj.push(h);
+                }
+            }
             adj_ptr[g + 1] = gadj.len();
         }
         Supervariables {
