@@ -461,3 +461,51 @@ fn default_tolerance_leaves_a_wide_margin_on_real_data() {
     eprintln!("hand.mesh: L = {l}, min volume = {min_vol:e}, relative {rel:e}");
     assert!(rel > 1e-11, "relative min volume {rel:e}");
 }
+
+/// The checks run side by side, but a mesh with several problems still
+/// gets the first in the module docs' order (duplicate, then rest areas,
+/// then manifoldness, then components), and the warnings come in that
+/// order too (slivers, components, dropped vertices).
+#[test]
+fn several_problems_report_the_first_in_the_docs_order() {
+    let strict = strict();
+    let mut m = square();
+    m.positions.extend([
+        [0.5, 0.5, 1.0], // 4: a third triangle on edge (0, 2)
+        [5.0, 0.0, 0.0], // 5–7: collinear, a second component
+        [6.0, 0.0, 0.0],
+        [7.0, 0.0, 0.0],
+    ]);
+    m.triangles.extend([[0, 2, 4], [5, 6, 7], [2, 0, 1]]);
+    let (e, _) = tri_err(m.clone(), false, &strict);
+    assert_eq!(
+        e,
+        E::DuplicateElement {
+            element: 4,
+            first: 0
+        }
+    );
+    m.triangles.pop();
+    let (e, _) = tri_err(m.clone(), false, &strict);
+    assert!(matches!(e, E::DegenerateElement { .. }), "{e:?}");
+    // a sliver (quality ≈ 1.4e-6 < 1e-5), no longer degenerate
+    m.positions[7] = [7.0, 1e-5, 0.0];
+    let (e, _) = tri_err(m.clone(), false, &strict);
+    assert!(
+        matches!(e, E::NonManifoldEdge { edge: [0, 2], .. }),
+        "{e:?}"
+    );
+    m.triangles.remove(2);
+    let (e, _) = tri_err(m.clone(), false, &strict);
+    assert_eq!(e, E::MultipleComponents { count: 2 });
+    // vertex 4 is no longer used: dropped, the last warning
+    let opts = ValidationOptions {
+        drop_unreferenced: true,
+        ..Default::default()
+    };
+    let w = validate_tri(m, false, &opts).unwrap().warnings;
+    assert_eq!(w.len(), 3, "{w:?}");
+    assert!(w[0].contains("sliver"), "{w:?}");
+    assert!(w[1].contains("components"), "{w:?}");
+    assert!(w[2].contains("unreferenced"), "{w:?}");
+}

@@ -1,7 +1,10 @@
 //! Mesh validation: reasons and element ids for everything a solver or a
 //! parameterisation cannot work with.
 //!
-//! Always checked, in this order (the first problem found is returned):
+//! Always checked, in this order (the first problem found is returned;
+//! once the indices are in range, check 4, checks 5–6 and the topology
+//! checks run side by side, and the first problem in this order is still
+//! the one reported):
 //! 1. at least one element ([`ValidationError::NoElements`]);
 //! 2. uvs, if any: one per vertex, finite for referenced vertices;
 //! 3. indices in range, no vertex repeated inside an element;
@@ -76,29 +79,15 @@ fn rule(dimension: usize, signed: bool, opts: &ValidationOptions) -> MeasureRule
     }
 }
 
-/// Validate a triangle mesh: planar (`z = 0`, signed areas must be
-/// positive) or a surface in 3D (areas must be non-degenerate). See the
-/// module docs for the checks and their order.
-pub fn validate_tri(
-    mesh: TriMesh,
+/// Checks 5–6 of a triangle mesh: which vertices are used, finite
+/// coordinates and uvs where used, `z = 0` for planar meshes, the rest
+/// areas; with the warnings of the last.
+fn tri_geometry(
+    mesh: &TriMesh,
     planar: bool,
     opts: &ValidationOptions,
-) -> Result<Validated<TriMesh>, ValidationError> {
-    let n = mesh.positions.len();
-    if mesh.triangles.is_empty() {
-        return Err(ValidationError::NoElements);
-    }
-    if let Some(uvs) = &mesh.uvs
-        && uvs.len() != n
-    {
-        return Err(ValidationError::UvCountMismatch {
-            uvs: uvs.len(),
-            vertices: n,
-        });
-    }
-    check_indices(&mesh.triangles, n)?;
-    check_duplicates(&mesh.triangles)?;
-    let used = referenced(&mesh.triangles, n);
+) -> Result<(Vec<bool>, Vec<String>), ValidationError> {
+    let used = referenced(&mesh.triangles, mesh.positions.len());
     check_finite(&mesh.positions, &used)?;
     if let Some(uvs) = &mesh.uvs
         && let Some((vertex, uv)) = uvs
@@ -129,14 +118,63 @@ pub fn validate_tri(
     });
     let mut warnings = Vec::new();
     check_measures(measures, &rule(2, planar, opts), &mut warnings)?;
+    Ok((used, warnings))
+}
+
+/// The requested manifoldness and orientation of a triangle mesh, then
+/// its components; with the components' warning.
+fn tri_topology(
+    tris: &[[usize; 3]],
+    n: usize,
+    opts: &ValidationOptions,
+) -> Result<Vec<String>, ValidationError> {
     if opts.require_manifold || opts.require_oriented {
-        let sides = sorted_sides(&mesh.triangles);
+        let sides = sorted_sides(tris);
         manifold::check_edges(&sides, opts.require_manifold, opts.require_oriented)?;
     }
     if opts.require_manifold {
-        manifold::check_fans(&mesh.triangles, n)?;
+        manifold::check_fans(tris, n)?;
     }
-    check_components(&mesh.triangles, opts, &mut warnings)?;
+    let mut warnings = Vec::new();
+    check_components(tris, opts, &mut warnings)?;
+    Ok(warnings)
+}
+
+/// Validate a triangle mesh: planar (`z = 0`, signed areas must be
+/// positive) or a surface in 3D (areas must be non-degenerate). See the
+/// module docs for the checks and their order.
+pub fn validate_tri(
+    mesh: TriMesh,
+    planar: bool,
+    opts: &ValidationOptions,
+) -> Result<Validated<TriMesh>, ValidationError> {
+    let n = mesh.positions.len();
+    if mesh.triangles.is_empty() {
+        return Err(ValidationError::NoElements);
+    }
+    if let Some(uvs) = &mesh.uvs
+        && uvs.len() != n
+    {
+        return Err(ValidationError::UvCountMismatch {
+            uvs: uvs.len(),
+            vertices: n,
+        });
+    }
+    check_indices(&mesh.triangles, n)?;
+    // once the indices are in range, checks 4, 5–6 and the requested
+    // topology are independent: side by side, reported in the docs' order
+    let (duplicates, (geometry, topology)) = rayon::join(
+        || check_duplicates(&mesh.triangles),
+        || {
+            rayon::join(
+                || tri_geometry(&mesh, planar, opts),
+                || tri_topology(&mesh.triangles, n, opts),
+            )
+        },
+    );
+    duplicates?;
+    let (used, mut warnings) = geometry?;
+    warnings.extend(topology?);
     check_unreferenced(&used, opts.drop_unreferenced)?;
     let (vertex_map, kept, warning) = compaction(&used);
     warnings.extend(warning);
@@ -165,20 +203,37 @@ pub fn validate_tet(
         return Err(ValidationError::NoElements);
     }
     check_indices(&mesh.tets, n)?;
-    check_duplicates(&mesh.tets)?;
-    let used = referenced(&mesh.tets, n);
-    check_finite(&mesh.positions, &used)?;
-    let pos = &mesh.positions;
-    let measures = mesh.tets.iter().map(|t| {
-        let m = tet_signed_volume(pos[t[0]], pos[t[1]], pos[t[2]], pos[t[3]]);
-        (m, longest_edge(pos, t))
-    });
-    let mut warnings = Vec::new();
-    check_measures(measures, &rule(3, true, opts), &mut warnings)?;
-    if opts.require_manifold {
-        manifold::check_tet_faces(&mesh.tets)?;
-    }
-    check_components(&mesh.tets, opts, &mut warnings)?;
+    // as for triangles: independent once the indices are in range
+    let (duplicates, (geometry, topology)) = rayon::join(
+        || check_duplicates(&mesh.tets),
+        || {
+            rayon::join(
+                || {
+                    let used = referenced(&mesh.tets, n);
+                    check_finite(&mesh.positions, &used)?;
+                    let pos = &mesh.positions;
+                    let measures = mesh.tets.iter().map(|t| {
+                        let m = tet_signed_volume(pos[t[0]], pos[t[1]], pos[t[2]], pos[t[3]]);
+                        (m, longest_edge(pos, t))
+                    });
+                    let mut warnings = Vec::new();
+                    check_measures(measures, &rule(3, true, opts), &mut warnings)?;
+                    Ok((used, warnings))
+                },
+                || {
+                    if opts.require_manifold {
+                        manifold::check_tet_faces(&mesh.tets)?;
+                    }
+                    let mut warnings = Vec::new();
+                    check_components(&mesh.tets, opts, &mut warnings)?;
+                    Ok(warnings)
+                },
+            )
+        },
+    );
+    duplicates?;
+    let (used, mut warnings) = geometry?;
+    warnings.extend(topology?);
     check_unreferenced(&used, opts.drop_unreferenced)?;
     let (vertex_map, kept, warning) = compaction(&used);
     warnings.extend(warning);
