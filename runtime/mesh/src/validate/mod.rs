@@ -163,14 +163,10 @@ pub fn validate_tri(
     check_indices(&mesh.triangles, n)?;
     // once the indices are in range, checks 4, 5–6 and the requested
     // topology are independent: side by side, reported in the docs' order
-    let (duplicates, (geometry, topology)) = rayon::join(
+    let (duplicates, geometry, topology) = side_by_side(
         || check_duplicates(&mesh.triangles),
-        || {
-            rayon::join(
-                || tri_geometry(&mesh, planar, opts),
-                || tri_topology(&mesh.triangles, n, opts),
-            )
-        },
+        || tri_geometry(&mesh, planar, opts),
+        || tri_topology(&mesh.triangles, n, opts),
     );
     duplicates?;
     let (used, mut warnings) = geometry?;
@@ -192,6 +188,49 @@ pub fn validate_tri(
     })
 }
 
+/// `a`, `b` and `c` run side by side on rayon's threads; their results in
+/// that order.
+fn side_by_side<A: Send, B: Send, C: Send>(
+    a: impl FnOnce() -> A + Send,
+    b: impl FnOnce() -> B + Send,
+    c: impl FnOnce() -> C + Send,
+) -> (A, B, C) {
+    let (x, (y, z)) = rayon::join(a, || rayon::join(b, c));
+    (x, y, z)
+}
+
+/// Checks 5–6 of a tet mesh: which vertices are used, finite coordinates
+/// where used, the signed rest volumes; with the warnings of the last.
+fn tet_geometry(
+    mesh: &TetMesh,
+    opts: &ValidationOptions,
+) -> Result<(Vec<bool>, Vec<String>), ValidationError> {
+    let used = referenced(&mesh.tets, mesh.positions.len());
+    check_finite(&mesh.positions, &used)?;
+    let pos = &mesh.positions;
+    let measures = mesh.tets.iter().map(|t| {
+        let m = tet_signed_volume(pos[t[0]], pos[t[1]], pos[t[2]], pos[t[3]]);
+        (m, longest_edge(pos, t))
+    });
+    let mut warnings = Vec::new();
+    check_measures(measures, &rule(3, true, opts), &mut warnings)?;
+    Ok((used, warnings))
+}
+
+/// The requested manifoldness of a tet mesh, then its components; with
+/// the components' warning.
+fn tet_topology(
+    tets: &[[usize; 4]],
+    opts: &ValidationOptions,
+) -> Result<Vec<String>, ValidationError> {
+    if opts.require_manifold {
+        manifold::check_tet_faces(tets)?;
+    }
+    let mut warnings = Vec::new();
+    check_components(tets, opts, &mut warnings)?;
+    Ok(warnings)
+}
+
 /// Validate a tet mesh (signed volumes must be positive). See the module
 /// docs for the checks and their order.
 pub fn validate_tet(
@@ -204,32 +243,10 @@ pub fn validate_tet(
     }
     check_indices(&mesh.tets, n)?;
     // as for triangles: independent once the indices are in range
-    let (duplicates, (geometry, topology)) = rayon::join(
+    let (duplicates, geometry, topology) = side_by_side(
         || check_duplicates(&mesh.tets),
-        || {
-            rayon::join(
-                || {
-                    let used = referenced(&mesh.tets, n);
-                    check_finite(&mesh.positions, &used)?;
-                    let pos = &mesh.positions;
-                    let measures = mesh.tets.iter().map(|t| {
-                        let m = tet_signed_volume(pos[t[0]], pos[t[1]], pos[t[2]], pos[t[3]]);
-                        (m, longest_edge(pos, t))
-                    });
-                    let mut warnings = Vec::new();
-                    check_measures(measures, &rule(3, true, opts), &mut warnings)?;
-                    Ok((used, warnings))
-                },
-                || {
-                    if opts.require_manifold {
-                        manifold::check_tet_faces(&mesh.tets)?;
-                    }
-                    let mut warnings = Vec::new();
-                    check_components(&mesh.tets, opts, &mut warnings)?;
-                    Ok(warnings)
-                },
-            )
-        },
+        || tet_geometry(&mesh, opts),
+        || tet_topology(&mesh.tets, opts),
     );
     duplicates?;
     let (used, mut warnings) = geometry?;
