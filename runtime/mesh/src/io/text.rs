@@ -214,7 +214,12 @@ pub(crate) fn parse_f64(tok: &str, line: usize, what: &str) -> Result<f64, Parse
 /// Decode file bytes as UTF-8, replacing invalid sequences (mesh formats
 /// are ASCII; stray bytes in comments must not stop us).
 pub(crate) fn decode(bytes: &[u8]) -> std::borrow::Cow<'_, str> {
-    String::from_utf8_lossy(bytes)
+    // the strict check first: it runs word-at-a-time over ASCII, where the
+    // lossy decoder walks chunk by chunk (0.02 s of a 54 MB file)
+    match std::str::from_utf8(bytes) {
+        Ok(text) => std::borrow::Cow::Borrowed(text),
+        Err(_) => String::from_utf8_lossy(bytes),
+    }
 }
 
 #[cfg(test)]
