@@ -556,7 +556,15 @@ mod tests {
     /// The byte scans give what `str::lines` and `split_whitespace` give.
     #[test]
     fn byte_scans_agree_with_str_methods() {
-        for text in ["", "\n", "a", "a\n", "a\r\nb", "\n\nx\n", "v 1 2\r\n# c\nf 1 2 3"] {
+        for text in [
+            "",
+            "\n",
+            "a",
+            "a\n",
+            "a\r\nb",
+            "\n\nx\n",
+            "v 1 2\r\n# c\nf 1 2 3",
+        ] {
             let ours: Vec<&str> = lines(text)
                 .map(|l| l.strip_suffix('\r').unwrap_or(l))
                 .collect();

@@ -195,18 +195,11 @@ fn solve_interior<O: AsRef<[usize]>>(
     uv: &mut [[f64; 2]],
     m: usize,
 ) -> Result<(), TutteError> {
-    let each = |visit: &mut dyn FnMut(weights::Contribution)| {
-        let mut contrib = Vec::with_capacity(6);
-        for t in &mesh.triangles {
-            contrib.clear();
-            let p = t.map(|v| mesh.positions[v]);
-            weights::triangle_contributions(weights, *t, p, &mut contrib)
-                .map_err(|edge| TutteError::BadWeight { weights, edge })?;
-            contrib.iter().for_each(|&c| visit(c));
-        }
-        Ok(())
+    let each = |f: usize, out: &mut Vec<weights::Contribution>| {
+        weights::triangle_contributions(weights, mesh.triangles[f], &mesh.positions, out)
+            .map_err(|edge| TutteError::BadWeight { weights, edge })
     };
-    let mut sys = linear::assemble(&each, interior, uv, m)?;
+    let mut sys = linear::assemble(&mesh.triangles, &each, interior, uv, m)?;
     let solved = if weights.is_symmetric() {
         let perm = match order().and_then(|o| linear::interior_order(o.as_ref(), interior, m)) {
             Some(perm) => perm,

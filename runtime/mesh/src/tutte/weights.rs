@@ -21,44 +21,44 @@ use crate::types::TutteWeights;
 /// A directed weight contribution `w_{row, col} += value`.
 pub(crate) type Contribution = (usize, usize, f64);
 
-/// Contributions of triangle `t` (corner positions `p`). Returns the
-/// directed edge whose weight is not finite, if any.
+/// Contributions of triangle `t` (vertex positions `positions`, read only
+/// by the weights that depend on them). Returns the directed edge whose
+/// weight is not finite, if any.
 pub(crate) fn triangle_contributions(
     weights: TutteWeights,
     t: [usize; 3],
-    p: [[f64; 3]; 3],
+    positions: &[[f64; 3]],
     out: &mut Vec<Contribution>,
 ) -> Result<(), [usize; 2]> {
+    if weights == TutteWeights::Uniform {
+        for c in 0..3 {
+            let (i, j) = (t[c], t[(c + 1) % 3]);
+            out.extend([(i, j, 0.5), (j, i, 0.5)]);
+        }
+        return Ok(());
+    }
+    let p = t.map(|v| positions[v]);
     for c in 0..3 {
         let (i, j, k) = (t[c], t[(c + 1) % 3], t[(c + 2) % 3]);
         let a = sub(p[(c + 1) % 3], p[c]);
         let b = sub(p[(c + 2) % 3], p[c]);
-        match weights {
-            TutteWeights::Uniform => {
-                out.push((i, j, 0.5));
-                out.push((j, i, 0.5));
+        if weights == TutteWeights::Cotangent {
+            let w = 0.5 * dot(a, b) / norm(cross(a, b));
+            if !w.is_finite() {
+                return Err([j, k]);
             }
-            TutteWeights::Cotangent => {
-                let w = 0.5 * dot(a, b) / norm(cross(a, b));
-                if !w.is_finite() {
-                    return Err([j, k]);
-                }
-                out.push((j, k, w));
-                out.push((k, j, w));
+            out.extend([(j, k, w), (k, j, w)]);
+        } else {
+            let (la, lb) = (norm(a), norm(b));
+            let half_tan = norm(cross(a, b)) / (la * lb + dot(a, b));
+            let (wj, wk) = (half_tan / la, half_tan / lb);
+            if !wj.is_finite() {
+                return Err([i, j]);
             }
-            TutteWeights::MeanValue => {
-                let (la, lb) = (norm(a), norm(b));
-                let half_tan = norm(cross(a, b)) / (la * lb + dot(a, b));
-                let (wj, wk) = (half_tan / la, half_tan / lb);
-                if !wj.is_finite() {
-                    return Err([i, j]);
-                }
-                if !wk.is_finite() {
-                    return Err([i, k]);
-                }
-                out.push((i, j, wj));
-                out.push((i, k, wk));
+            if !wk.is_finite() {
+                return Err([i, k]);
             }
+            out.extend([(i, j, wj), (i, k, wk)]);
         }
     }
     Ok(())
@@ -76,20 +76,20 @@ mod tests {
     fn right_triangle_weights() {
         let p = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let mut c = Vec::new();
-        triangle_contributions(TutteWeights::Cotangent, [0, 1, 2], p, &mut c).unwrap();
+        triangle_contributions(TutteWeights::Cotangent, [0, 1, 2], &p, &mut c).unwrap();
         // Right angle at 0: cot = 0 for edge 12; 45° at 1 and 2: cot = 1.
         assert!(sum(&c, 1, 2).abs() < 1e-15);
         assert!((sum(&c, 0, 2) - 0.5).abs() < 1e-15);
         assert!((sum(&c, 2, 0) - 0.5).abs() < 1e-15);
         c.clear();
-        triangle_contributions(TutteWeights::MeanValue, [0, 1, 2], p, &mut c).unwrap();
+        triangle_contributions(TutteWeights::MeanValue, [0, 1, 2], &p, &mut c).unwrap();
         // At 0: tan(45°) = 1, edges of length 1.
         assert!((sum(&c, 0, 1) - 1.0).abs() < 1e-15);
         // At 1: tan(22.5°) / 1 toward 0.
         assert!((sum(&c, 1, 0) - (std::f64::consts::PI / 8.0).tan()).abs() < 1e-15);
         c.clear();
         let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
-        assert!(triangle_contributions(TutteWeights::Cotangent, [0, 1, 2], flat, &mut c).is_err());
-        assert!(triangle_contributions(TutteWeights::MeanValue, [0, 1, 2], flat, &mut c).is_err());
+        assert!(triangle_contributions(TutteWeights::Cotangent, [0, 1, 2], &flat, &mut c).is_err());
+        assert!(triangle_contributions(TutteWeights::MeanValue, [0, 1, 2], &flat, &mut c).is_err());
     }
 }
