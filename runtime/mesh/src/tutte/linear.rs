@@ -404,8 +404,8 @@ mod tests {
                         let structural = dense[r][c] != 0.0 || r == c;
                         assert!(!structural || ri[cp[c]..cp[c + 1]].contains(&r));
                     }
-                    for k in 0..2 {
-                        assert!((sys.rhs[(r, k)] - rhs[r][k]).abs() < 1e-13, "{weights:?}");
+                    for (k, want) in rhs[r].iter().enumerate() {
+                        assert!((sys.rhs[(r, k)] - want).abs() < 1e-13, "{weights:?}");
                     }
                 }
             }
