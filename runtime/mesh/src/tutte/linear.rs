@@ -1,10 +1,11 @@
 //! The interior system of the Tutte embedding, `L_II u_I = −L_IB u_B`
 //! (two right-hand sides, u and v), assembled and solved.
 //!
-//! * **Assembly** straight into compressed columns: a counting sort of the
-//!   per-triangle contributions by column, then each (short) column sorted by
-//!   row with duplicates summed — linear in the contributions, no global
-//!   triplet sort.
+//! * **Assembly** straight into compressed columns, column by column: each
+//!   interior vertex visits its triangles (a counting sort of the corners),
+//!   sums its row's diagonal and right-hand side and sorts its column's few
+//!   entries by row, duplicates summed ([`assemble`]) — linear, every array
+//!   written in order, no global triplet sort.
 //! * **Symmetric weights** (uniform, cotangent): sparse Cholesky (faer,
 //!   supernodal) under a **geometric nested dissection** ordering
 //!   ([`crate::dissection`], shared with the Newton solver's `geometric`
