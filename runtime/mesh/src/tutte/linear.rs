@@ -66,8 +66,9 @@ pub(super) type Contributions<'a> =
 /// right-hand side) and in its column (entries), sorts the column's short
 /// list by row and sums duplicates. Every array is written in order, where
 /// scattering the contributions into columns first cost more (the
-/// 1M-triangle disk, `setup_timing`: 0.18 s → 0.10–0.12 s). The error is the first triangle's,
-/// in triangle order, as one pass over the triangles would report it.
+/// 1M-triangle disk, `setup_timing`: 0.18 s → 0.10–0.12 s). The error is
+/// the first triangle's, in triangle order, as one pass over the triangles
+/// would report it.
 pub(super) fn assemble(
     triangles: &[[usize; 3]],
     contributions: &Contributions<'_>,
@@ -88,7 +89,7 @@ pub(super) fn assemble(
         let (mut diagonal, mut b) = (0.0, [0.0; 2]);
         for &t in corners.of_unknown(c) {
             contrib.clear();
-            if contributions(t as usize, &mut contrib).is_err() {
+            if contributions(t, &mut contrib).is_err() {
                 return Err(first_error(triangles.len(), contributions));
             }
             for &(i, j, w) in &contrib {
@@ -137,7 +138,7 @@ fn first_error(n_triangles: usize, contributions: &Contributions<'_>) -> TutteEr
 struct Corners {
     /// `start[c]..start[c + 1]` indexes unknown c's triangles.
     start: Vec<usize>,
-    triangle: Vec<u32>,
+    triangle: Vec<usize>,
     /// The vertex of each unknown.
     vertex: Vec<usize>,
     /// The triangles with no interior corner.
@@ -164,11 +165,11 @@ impl Corners {
             start[c + 1] += start[c];
         }
         let mut next = start.clone();
-        let mut triangle = vec![0u32; start[m]];
+        let mut triangle = vec![0usize; start[m]];
         for (t, tri) in triangles.iter().enumerate() {
             for &v in tri {
                 if let Some(at) = next.get_mut(interior[v]) {
-                    triangle[*at] = t as u32;
+                    triangle[*at] = t;
                     *at += 1;
                 }
             }
@@ -187,7 +188,7 @@ impl Corners {
         }
     }
 
-    fn of_unknown(&self, c: usize) -> &[u32] {
+    fn of_unknown(&self, c: usize) -> &[usize] {
         &self.triangle[self.start[c]..self.start[c + 1]]
     }
 }
