@@ -18,6 +18,54 @@ pub(crate) struct Side {
     pub to: usize,
 }
 
+/// Each vertex's triangles, in triangle order: a counting sort of the
+/// corners, `around(v)` the triangles with a corner at `v`.
+pub(crate) struct VertexTriangles {
+    start: Vec<usize>,
+    triangle: Vec<usize>,
+}
+
+impl VertexTriangles {
+    /// The triangles around each of `vertex_count` vertices; a corner out
+    /// of range is [`ValidationError::IndexOutOfRange`] (the first such
+    /// triangle's).
+    pub(crate) fn of(
+        tris: &[[usize; 3]],
+        vertex_count: usize,
+    ) -> Result<VertexTriangles, ValidationError> {
+        let mut start = vec![0usize; vertex_count + 1];
+        for (element, t) in tris.iter().enumerate() {
+            for &index in t {
+                if index >= vertex_count {
+                    return Err(ValidationError::IndexOutOfRange {
+                        element,
+                        index,
+                        vertex_count,
+                    });
+                }
+                start[index + 1] += 1;
+            }
+        }
+        for v in 0..vertex_count {
+            start[v + 1] += start[v];
+        }
+        let mut next = start.clone();
+        let mut triangle = vec![0usize; start[vertex_count]];
+        for (f, t) in tris.iter().enumerate() {
+            for &v in t {
+                triangle[next[v]] = f;
+                next[v] += 1;
+            }
+        }
+        Ok(VertexTriangles { start, triangle })
+    }
+
+    /// The triangles with a corner at `v`, in triangle order.
+    pub(crate) fn around(&self, v: usize) -> &[usize] {
+        &self.triangle[self.start[v]..self.start[v + 1]]
+    }
+}
+
 /// Sort `items` by `(first(item), rest(item))`. When the `first` values
 /// are compact (at most a few times the item count) this is a counting
 /// sort on `first` followed by small per-bucket sorts, which is linear in
@@ -318,6 +366,25 @@ fn union(parent: &mut [usize], a: usize, b: usize) {
 mod tests {
     use super::*;
     use crate::geometry::tet_signed_volume;
+
+    #[test]
+    fn vertex_triangles_list_each_corner_in_order() {
+        let tris = [[0, 1, 2], [0, 2, 3], [3, 2, 4]];
+        let around = VertexTriangles::of(&tris, 6).unwrap();
+        let want: [&[usize]; 6] = [&[0, 1], &[0], &[0, 1, 2], &[1, 2], &[2], &[]];
+        for (v, w) in want.iter().enumerate() {
+            assert_eq!(around.around(v), *w, "vertex {v}");
+        }
+        for bad in [6, usize::MAX] {
+            let e = VertexTriangles::of(&[[0, 1, 2], [2, bad, 0]], 6).err();
+            let want = ValidationError::IndexOutOfRange {
+                element: 1,
+                index: bad,
+                vertex_count: 6,
+            };
+            assert_eq!(e, Some(want));
+        }
+    }
 
     #[test]
     fn square_has_one_ccw_loop() {

@@ -38,6 +38,7 @@ use faer::{Conj, Mat, Par, Side};
 use super::weights::Contribution;
 use crate::dissection::Graph;
 use crate::error::TutteError;
+use crate::topology::VertexTriangles;
 
 /// The interior matrix (compressed columns, sorted rows, no duplicates) and
 /// the right-hand sides, one row per interior unknown.
@@ -61,8 +62,8 @@ pub(super) type Contributions<'a> =
 /// `(i, j, w)` (row i gains +w on its diagonal and −w at column j).
 /// `interior[v]` is v's unknown or `usize::MAX` on the boundary.
 ///
-/// Column by column: each interior vertex visits its triangles (a counting
-/// sort of the corners), takes the contributions in its row (diagonal,
+/// Column by column: each interior vertex visits its triangles
+/// ([`VertexTriangles`]), takes the contributions in its row (diagonal,
 /// right-hand side) and in its column (entries), sorts the column's short
 /// list by row and sums duplicates. Every array is written in order, where
 /// scattering the contributions into columns first cost more (the
@@ -76,18 +77,24 @@ pub(super) fn assemble(
     uv: &[[f64; 2]],
     m: usize,
 ) -> Result<System, TutteError> {
-    let corners = Corners::of(triangles, interior, m);
+    let around = VertexTriangles::of(triangles, interior.len())?;
+    let mut vertex = vec![0usize; m];
+    for (v, &c) in interior.iter().enumerate() {
+        if let Some(slot) = vertex.get_mut(c) {
+            *slot = v;
+        }
+    }
     let mut rhs = Mat::<f64>::zeros(m, 2);
     let mut col_ptr = Vec::with_capacity(m + 1);
     // a vertex of a disk has about as many neighbours as triangles
-    let mut row_idx = Vec::with_capacity(corners.triangle.len() + m);
-    let mut values = Vec::with_capacity(corners.triangle.len() + m);
+    let mut row_idx = Vec::with_capacity(3 * triangles.len() + m);
+    let mut values = Vec::with_capacity(3 * triangles.len() + m);
     col_ptr.push(0);
     let (mut contrib, mut column) = (Vec::with_capacity(6), Vec::new());
-    for (c, &v) in corners.vertex.iter().enumerate() {
+    for (c, &v) in vertex.iter().enumerate() {
         column.clear();
         let (mut diagonal, mut b) = (0.0, [0.0; 2]);
-        for &t in corners.of_unknown(c) {
+        for &t in around.around(v) {
             contrib.clear();
             if contributions(t, &mut contrib).is_err() {
                 return Err(first_error(triangles.len(), contributions));
@@ -110,7 +117,8 @@ pub(super) fn assemble(
     }
     // the triangles without an interior corner enter no equation, but a
     // bad weight there is an error all the same
-    for &t in &corners.outside {
+    let outside = |t: &[usize; 3]| t.iter().all(|&v| interior[v] == usize::MAX);
+    for (t, _) in triangles.iter().enumerate().filter(|(_, t)| outside(t)) {
         contrib.clear();
         contributions(t, &mut contrib)?;
     }
@@ -131,66 +139,6 @@ fn first_error(n_triangles: usize, contributions: &Contributions<'_>) -> TutteEr
         }
     }
     solve_error("internal error: a triangle's weights failed, then did not".into())
-}
-
-/// The triangles at each interior unknown's vertex, in triangle order (a
-/// counting sort of the corners).
-struct Corners {
-    /// `start[c]..start[c + 1]` indexes unknown c's triangles.
-    start: Vec<usize>,
-    triangle: Vec<usize>,
-    /// The vertex of each unknown.
-    vertex: Vec<usize>,
-    /// The triangles with no interior corner.
-    outside: Vec<usize>,
-}
-
-impl Corners {
-    fn of(triangles: &[[usize; 3]], interior: &[usize], m: usize) -> Corners {
-        let mut start = vec![0usize; m + 1];
-        let mut outside = Vec::new();
-        for (t, tri) in triangles.iter().enumerate() {
-            let mut inside = false;
-            for &v in tri {
-                if interior[v] != usize::MAX {
-                    start[interior[v] + 1] += 1;
-                    inside = true;
-                }
-            }
-            if !inside {
-                outside.push(t);
-            }
-        }
-        for c in 0..m {
-            start[c + 1] += start[c];
-        }
-        let mut next = start.clone();
-        let mut triangle = vec![0usize; start[m]];
-        for (t, tri) in triangles.iter().enumerate() {
-            for &v in tri {
-                if let Some(at) = next.get_mut(interior[v]) {
-                    triangle[*at] = t;
-                    *at += 1;
-                }
-            }
-        }
-        let mut vertex = vec![0usize; m];
-        for (v, &c) in interior.iter().enumerate() {
-            if let Some(slot) = vertex.get_mut(c) {
-                *slot = v;
-            }
-        }
-        Corners {
-            start,
-            triangle,
-            vertex,
-            outside,
-        }
-    }
-
-    fn of_unknown(&self, c: usize) -> &[usize] {
-        &self.triangle[self.start[c]..self.start[c + 1]]
-    }
 }
 
 /// Sort a column's `(row, value)` entries by row, sum duplicates and

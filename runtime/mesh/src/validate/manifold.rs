@@ -2,7 +2,7 @@
 //! of tet meshes.
 
 use crate::error::ValidationError;
-use crate::topology::{Side, TET_FACES, sort_by_vertex};
+use crate::topology::{Side, TET_FACES, VertexTriangles, sort_by_vertex};
 
 /// Edges with more than two triangles, and (when `oriented`) interior
 /// edges traversed twice in the same direction.
@@ -45,28 +45,11 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 /// manifold edges this also rules out boundary vertices with more than
 /// two boundary edges.)
 pub(crate) fn check_fans(tris: &[[usize; 3]], vertex_count: usize) -> Result<(), ValidationError> {
-    // CSR vertex → incident triangles.
-    let mut start = vec![0usize; vertex_count + 1];
-    for t in tris {
-        for &v in t {
-            start[v + 1] += 1;
-        }
-    }
-    for v in 0..vertex_count {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut incident = vec![0usize; start[vertex_count]];
-    for (f, t) in tris.iter().enumerate() {
-        for &v in t {
-            incident[fill[v]] = f;
-            fill[v] += 1;
-        }
-    }
+    let incident = VertexTriangles::of(tris, vertex_count)?;
     let mut nbrs: Vec<usize> = Vec::new();
     let mut parent: Vec<usize> = Vec::new();
     for v in 0..vertex_count {
-        let faces = &incident[start[v]..start[v + 1]];
+        let faces = incident.around(v);
         if faces.len() < 2 {
             continue;
         }
