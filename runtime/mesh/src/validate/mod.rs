@@ -160,20 +160,17 @@ pub fn validate_tri(
             vertices: n,
         });
     }
-    check_indices(&mesh.triangles, n)?;
-    // once the indices are in range, checks 4, 5–6 and the requested
-    // topology are independent: side by side, reported in the docs' order
-    let (duplicates, geometry, topology) = side_by_side(
-        || check_duplicates(&mesh.triangles),
+    let Checked {
+        vertex_map,
+        kept,
+        warnings,
+    } = checked(
+        &mesh.triangles,
+        n,
+        opts,
         || tri_geometry(&mesh, planar, opts),
         || tri_topology(&mesh.triangles, n, opts),
-    );
-    duplicates?;
-    let (used, mut warnings) = geometry?;
-    warnings.extend(topology?);
-    check_unreferenced(&used, opts.drop_unreferenced)?;
-    let (vertex_map, kept, warning) = compaction(&used);
-    warnings.extend(warning);
+    )?;
     let positions = kept.iter().map(|&v| mesh.positions[v]).collect();
     let uvs = mesh.uvs.map(|uvs| kept.iter().map(|&v| uvs[v]).collect());
     let triangles = renumber(mesh.triangles, &vertex_map);
@@ -188,15 +185,44 @@ pub fn validate_tri(
     })
 }
 
-/// `a`, `b` and `c` run side by side on rayon's threads; their results in
-/// that order.
-fn side_by_side<A: Send, B: Send, C: Send>(
-    a: impl FnOnce() -> A + Send,
-    b: impl FnOnce() -> B + Send,
-    c: impl FnOnce() -> C + Send,
-) -> (A, B, C) {
-    let (x, (y, z)) = rayon::join(a, || rayon::join(b, c));
-    (x, y, z)
+/// The module docs' checks from 3 on, for the elements of a mesh with `n`
+/// vertices: indices in range (check 3); then, independent once they are,
+/// check 4, the mesh's `geometry` (checks 5–6: the used vertices, with
+/// their warnings) and its `topology` (the requested manifoldness, the
+/// components) side by side on rayon's threads, the first problem in the
+/// docs' order reported; finally the unreferenced vertices. Returns the
+/// compaction and every warning in order.
+fn checked<const K: usize>(
+    elements: &[[usize; K]],
+    n: usize,
+    opts: &ValidationOptions,
+    geometry: impl FnOnce() -> Result<(Vec<bool>, Vec<String>), ValidationError> + Send,
+    topology: impl FnOnce() -> Result<Vec<String>, ValidationError> + Send,
+) -> Result<Checked, ValidationError> {
+    check_indices(elements, n)?;
+    let (duplicates, (geometry, topology)) = rayon::join(
+        || check_duplicates(elements),
+        || rayon::join(geometry, topology),
+    );
+    duplicates?;
+    let (used, mut warnings) = geometry?;
+    warnings.extend(topology?);
+    check_unreferenced(&used, opts.drop_unreferenced)?;
+    let (vertex_map, kept, warning) = compaction(&used);
+    warnings.extend(warning);
+    Ok(Checked {
+        vertex_map,
+        kept,
+        warnings,
+    })
+}
+
+/// What [`checked`] returns: the compaction's old → new vertex map and the
+/// kept vertices (old ids, in order), and the warnings.
+struct Checked {
+    vertex_map: Vec<Option<usize>>,
+    kept: Vec<usize>,
+    warnings: Vec<String>,
 }
 
 /// Checks 5–6 of a tet mesh: which vertices are used, finite coordinates
@@ -241,19 +267,17 @@ pub fn validate_tet(
     if mesh.tets.is_empty() {
         return Err(ValidationError::NoElements);
     }
-    check_indices(&mesh.tets, n)?;
-    // as for triangles: independent once the indices are in range
-    let (duplicates, geometry, topology) = side_by_side(
-        || check_duplicates(&mesh.tets),
+    let Checked {
+        vertex_map,
+        kept,
+        warnings,
+    } = checked(
+        &mesh.tets,
+        n,
+        opts,
         || tet_geometry(&mesh, opts),
         || tet_topology(&mesh.tets, opts),
-    );
-    duplicates?;
-    let (used, mut warnings) = geometry?;
-    warnings.extend(topology?);
-    check_unreferenced(&used, opts.drop_unreferenced)?;
-    let (vertex_map, kept, warning) = compaction(&used);
-    warnings.extend(warning);
+    )?;
     let positions = kept.iter().map(|&v| mesh.positions[v]).collect();
     let tets = renumber(mesh.tets, &vertex_map);
     Ok(Validated {
