@@ -18,8 +18,10 @@
  * Prints one JSON line per (ordering, threads), the shape of
  * `factor_bench` (benches/src/bin/factor_bench.rs): nnz(L) = Common->lnz,
  * flops = Common->fl (sum of squared column counts of L), best and mean
- * factorisation seconds, the 1-minute load average. Exit status 1 on any
- * failure (unreadable file, not positive definite, out of memory). */
+ * factorisation seconds, the seconds of one solve with two right-hand sides
+ * (solve2_s: u and v, as the Tutte system has), the 1-minute load average.
+ * Exit status 1 on any failure (unreadable file, not positive definite, out
+ * of memory). */
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -112,9 +114,23 @@ static double factorize(cholmod_sparse *A, cholmod_factor *L, cholmod_common *c)
     return t;
 }
 
+/* One solve L L^T X = B with two right-hand sides (a Tutte system's u and
+ * v), in seconds. */
+static double solve2(cholmod_factor *L, cholmod_common *c) {
+    cholmod_dense *B = cholmod_ones(L->n, 2, CHOLMOD_REAL, c);
+    if (!B) die("cholmod_ones failed");
+    double t = now();
+    cholmod_dense *X = cholmod_solve(CHOLMOD_A, L, B, c);
+    t = now() - t;
+    if (!X || c->status != CHOLMOD_OK) die("cholmod_solve failed");
+    cholmod_free_dense(&X, c);
+    cholmod_free_dense(&B, c);
+    return t;
+}
+
 /* Analyse with one ordering, time R rounds over the thread counts, print. */
 static void run_ordering(const struct args *a, cholmod_sparse *A, int ordering, cholmod_common *c) {
-    static double times[MAX_THREADS][MAX_REPEATS];
+    static double times[MAX_THREADS][MAX_REPEATS], solves[MAX_THREADS];
     c->nmethods = 1;
     c->method[0].ordering = ordering;
     c->postorder = 1;
@@ -136,6 +152,10 @@ static void run_ordering(const struct args *a, cholmod_sparse *A, int ordering, 
             times[k][r] = factorize(A, L, c);
         }
     for (int k = 0; k < a->n_threads; k++) {
+        set_threads(a->threads[k], c);
+        solves[k] = solve2(L, c);
+    }
+    for (int k = 0; k < a->n_threads; k++) {
         double best = times[k][0], sum = 0.0;
         for (int r = 0; r < a->repeats; r++) {
             if (times[k][r] < best) best = times[k][r];
@@ -144,11 +164,11 @@ static void run_ordering(const struct args *a, cholmod_sparse *A, int ordering, 
         printf("{\"solver\":\"cholmod\",\"matrix\":\"%s\",\"n\":%zu,\"nnz_a\":%zu,"
                "\"ordering\":\"%s\",\"threads\":%d,\"supernodal\":%s,\"nnz_l\":%.0f,"
                "\"l_stored\":%zu,\"flops\":%.6e,\"analyze_s\":%.6f,\"factor_best_s\":%.6f,"
-               "\"factor_mean_s\":%.6f,\"repeats\":%d,\"load1\":%.2f}\n",
+               "\"factor_mean_s\":%.6f,\"solve2_s\":%.6f,\"repeats\":%d,\"load1\":%.2f}\n",
                a->file, A->nrow, cholmod_nnz(A, c), ordering == CHOLMOD_METIS ? "metis" : "amd",
                a->threads[k], L->is_super ? "true" : "false", lnz,
                L->is_super ? L->xsize : L->nzmax, fl, analyze_s, best, sum / a->repeats,
-               a->repeats, load1());
+               solves[k], a->repeats, load1());
         fflush(stdout);
     }
     cholmod_free_factor(&L, c);

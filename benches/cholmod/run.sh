@@ -3,7 +3,8 @@
 #
 #   bash benches/cholmod/run.sh [OUT_DIR] [ROUNDS] [REPEATS] [MATRIX…]
 #
-# Export the first projected Newton matrices (export_hessians), then time
+# Export the first projected Newton matrices (export_hessians; also the
+# uniform Tutte system of the disk, `disk_tutte`, when named), then time
 # CHOLMOD (cholmod_bench: METIS and AMD, supernodal, OpenBLAS) and ecc
 # (factor_bench: every ordering and thread policy) on them. Each round runs
 # the configurations one after the other (CHOLMOD 1T, CHOLMOD 2T, ecc), each

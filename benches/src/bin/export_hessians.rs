@@ -13,7 +13,11 @@
 //! disk of the scaling benchmark, `disk_tri(N, 1)` with z = 0.05 sin(8πx)
 //! sin(8πy), N = 409 rings ≈ 1.0M triangles by default); `hand_arap`,
 //! `hand_snh` (hand.mesh as the report's per-solve table: lowest 8 % fixed,
-//! highest 8 % twisted 60° and pulled, energy / volume, clamp filter).
+//! highest 8 % twisted 60° and pulled, energy / volume, clamp filter);
+//! `disk_tutte` (not a Hessian: the interior matrix `L_II` of the uniform
+//! Tutte system the parameterisation solves for its start on the same disk,
+//! one scalar unknown per interior vertex, `w_ij = 1/2` per triangle edge,
+//! the reference for the Tutte solve of setup).
 //!
 //! The matrix is exactly what faer factorises in the first Newton step:
 //! the solver's own pattern (unknown numbering included) and filtered
@@ -35,13 +39,14 @@ use ecc_fem::{Elastic, Filter, LinearSolver, NewtonParams, NewtonSolver, Term, T
 use ecc_mesh::{TriMesh, disk_tri, read_tet_mesh, read_tri_mesh};
 use ecc_runtime::Energy;
 
-const ALL: [&str; 6] = [
+const ALL: [&str; 7] = [
     "camelhead",
     "armadillo_cut_low",
     "hand_1_i_f5000",
     "disk",
     "hand_arap",
     "hand_snh",
+    "disk_tutte",
 ];
 
 struct Args {
@@ -195,6 +200,73 @@ fn hand(data: &Path, energy: &str) -> Result<Exported, String> {
     first_matrix(&mut solver, &x, mesh.tets.len())
 }
 
+/// `L_II` of the uniform Tutte system (`ecc_mesh::tutte_embedding`):
+/// each triangle adds `1/2` to the weight of each of its edges; row `i` of
+/// an interior vertex has `Σ_j w_ij` on its diagonal and `−w_ij` at each
+/// interior neighbour `j` (the boundary is fixed, so its columns go to the
+/// right-hand side). Upper triangle, the interior vertices in mesh order.
+fn tutte_matrix(mesh: &TriMesh) -> Exported {
+    let mut edges: Vec<(usize, usize)> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |c| (t[c].min(t[(c + 1) % 3]), t[c].max(t[(c + 1) % 3]))))
+        .collect();
+    edges.sort_unstable();
+    let mut weighted: Vec<(usize, usize, f64)> = Vec::with_capacity(edges.len() / 2);
+    for e in edges {
+        match weighted.last_mut() {
+            Some(last) if (last.0, last.1) == e => last.2 += 0.5,
+            _ => weighted.push((e.0, e.1, 0.5)),
+        }
+    }
+    let n = mesh.positions.len();
+    let mut interior = vec![true; n];
+    for &(i, j, w) in &weighted {
+        if w < 1.0 {
+            (interior[i], interior[j]) = (false, false);
+        }
+    }
+    let mut index = vec![usize::MAX; n];
+    let mut m = 0;
+    for v in (0..n).filter(|&v| interior[v]) {
+        index[v] = m;
+        m += 1;
+    }
+    let mut diagonal = vec![0.0; m];
+    let mut entries = Vec::with_capacity(weighted.len() + m);
+    for &(i, j, w) in &weighted {
+        for (a, b) in [(i, j), (j, i)] {
+            if index[a] != usize::MAX {
+                diagonal[index[a]] += w;
+                if index[b] != usize::MAX && index[a] < index[b] {
+                    entries.push((index[b], index[a], -w));
+                }
+            }
+        }
+    }
+    entries.extend(diagonal.iter().enumerate().map(|(c, &d)| (c, c, d)));
+    entries.sort_unstable_by_key(|&(col, row, _)| (col, row));
+    let mut col_ptr = vec![0; m + 1];
+    for &(col, _, _) in &entries {
+        col_ptr[col + 1] += 1;
+    }
+    for c in 0..m {
+        col_ptr[c + 1] += col_ptr[c];
+    }
+    Exported {
+        matrix: UpperCsc {
+            n: m,
+            col_ptr,
+            row_idx: entries.iter().map(|e| e.1).collect(),
+            values: entries.iter().map(|e| e.2).collect(),
+        },
+        elements: mesh.triangles.len(),
+        shift: 0.0,
+        relative_shift: 0.0,
+        attempts: 0,
+    }
+}
+
 fn build(name: &str, a: &Args) -> Result<Exported, String> {
     let tri = |file: &str| read_tri_mesh(a.data.join(file)).map_err(|e| format!("{file}: {e}"));
     match name {
@@ -204,6 +276,7 @@ fn build(name: &str, a: &Args) -> Result<Exported, String> {
         "disk" => parameterisation(&bumpy_disk(a.rings)),
         "hand_arap" => hand(&a.data, "arap"),
         "hand_snh" => hand(&a.data, "snh"),
+        "disk_tutte" => Ok(tutte_matrix(&bumpy_disk(a.rings))),
         n => Err(format!("unknown matrix `{n}`")),
     }
 }
