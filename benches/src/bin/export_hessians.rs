@@ -319,10 +319,13 @@ fn run() -> Result<(), String> {
     for name in &a.names {
         let e = build(name, &a).map_err(|err| format!("{name}: {err}"))?;
         let m = &e.matrix;
+        let what = if name == "disk_tutte" {
+            "uniform Tutte system L_II"
+        } else {
+            "first projected Newton matrix"
+        };
         let comments = [
-            format!(
-                "ecc first projected Newton matrix `{name}` (benches/src/bin/export_hessians.rs), commit {commit}"
-            ),
+            format!("ecc {what} `{name}` (benches/src/bin/export_hessians.rs), commit {commit}"),
             format!(
                 "elements {} unknowns {} shift {:e} (relative {:e}, {} attempt(s))",
                 e.elements, m.n, e.shift, e.relative_shift, e.attempts
