@@ -272,7 +272,14 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ParseError> {
 fn parse_chunks(text: &str, pieces: usize) -> Result<Obj, ParseError> {
     use rayon::prelude::*;
     let chunks = line_chunks(text, pieces);
-    let counts: Vec<Counts> = chunks.par_iter().map(|c| count_statements(c)).collect();
+    // whether each chunk's tokens split at ASCII whitespace, decided once
+    // for both passes
+    let plain: Vec<bool> = chunks.par_iter().map(|c| is_plain(c)).collect();
+    let counts: Vec<Counts> = chunks
+        .par_iter()
+        .zip(&plain)
+        .map(|(c, &plain)| count_statements(c, plain))
+        .collect();
     let mut bases = Vec::with_capacity(chunks.len());
     let mut total = Counts {
         lines: 1,
@@ -295,7 +302,7 @@ fn parse_chunks(text: &str, pieces: usize) -> Result<Obj, ParseError> {
         obj.triangles.as_mut_slice(),
     );
     let mut jobs = Vec::with_capacity(chunks.len());
-    for ((chunk, base), own) in chunks.iter().zip(&bases).zip(&counts) {
+    for (((chunk, &plain), base), own) in chunks.iter().zip(&plain).zip(&bases).zip(&counts) {
         let (p, rest_p) = positions.split_at_mut(own.v);
         let (t, rest_t) = tex.split_at_mut(own.vt);
         let (f, rest_f) = triangles.split_at_mut(own.f);
@@ -309,11 +316,11 @@ fn parse_chunks(text: &str, pieces: usize) -> Result<Obj, ParseError> {
             corner_vt: Vec::new(),
             forward: Vec::new(),
         };
-        jobs.push((*chunk, base.lines, out));
+        jobs.push((*chunk, plain, base.lines, out));
     }
     let parsed: Vec<Result<Chunk<'_>, ParseError>> = jobs
         .into_par_iter()
-        .map(|(chunk, line, out)| parse_lines(chunk, line, out))
+        .map(|(chunk, plain, line, out)| parse_lines(chunk, plain, line, out))
         .collect();
     let (mut corner_vt, mut forward) = (Vec::new(), Vec::new());
     for (chunk, before) in parsed.into_iter().zip(&bases) {
@@ -428,10 +435,9 @@ impl Counts {
     }
 }
 
-/// The [`Counts`] of a chunk.
-fn count_statements(chunk: &str) -> Counts {
+/// The [`Counts`] of a chunk (`plain`: it passed [`is_plain`]).
+fn count_statements(chunk: &str, plain: bool) -> Counts {
     let mut n = Counts::default();
-    let plain = is_plain(chunk);
     for raw in lines(chunk) {
         n.lines += 1;
         match statement(raw, plain).1.next() {
@@ -444,13 +450,14 @@ fn count_statements(chunk: &str) -> Counts {
     n
 }
 
-/// Parse one chunk, whose first line is `first_line`, into `out`.
+/// Parse one chunk (`plain`: it passed [`is_plain`]), whose first line is
+/// `first_line`, into `out`.
 fn parse_lines<'a>(
     chunk: &str,
+    plain: bool,
     first_line: usize,
     mut out: Chunk<'a>,
 ) -> Result<Chunk<'a>, ParseError> {
-    let plain = is_plain(chunk);
     for (i, raw) in lines(chunk).enumerate() {
         let line = first_line + i;
         let (content, mut toks) = statement(raw, plain);
