@@ -23,6 +23,28 @@ pub struct UpperCsc {
     pub values: Vec<f64>,
 }
 
+impl UpperCsc {
+    /// The `n`×`n` matrix of the upper entries `(row, column, value)`,
+    /// row ≤ column, in any order (sorted here by column, then row; a
+    /// repeated entry is kept twice: callers check or avoid them).
+    pub fn from_entries(n: usize, mut entries: Vec<(usize, usize, f64)>) -> UpperCsc {
+        entries.sort_unstable_by_key(|&(i, j, _)| (j, i));
+        let mut col_ptr = vec![0usize; n + 1];
+        for &(_, j, _) in &entries {
+            col_ptr[j + 1] += 1;
+        }
+        for j in 0..n {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        UpperCsc {
+            n,
+            col_ptr,
+            row_idx: entries.iter().map(|e| e.0).collect(),
+            values: entries.iter().map(|e| e.2).collect(),
+        }
+    }
+}
+
 /// Why a Matrix Market file could not be read (with its 1-based line).
 #[derive(Debug)]
 pub enum MtxError {
@@ -163,35 +185,26 @@ pub fn read(input: impl BufRead) -> Result<UpperCsc, MtxError> {
             format!("{} entries, the size line says {nnz}", entries.len()),
         ));
     }
-    entries.sort_unstable_by_key(|&(i, j, _)| (j, i));
-    let mut col_ptr = vec![0usize; n + 1];
-    for w in entries.windows(2) {
-        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+    let m = UpperCsc::from_entries(n, entries);
+    for j in 0..n {
+        let rows = &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]];
+        if let Some(w) = rows.windows(2).find(|w| w[0] == w[1]) {
             return Err(parse_err(
                 no,
-                format!("entry ({}, {}) repeated", w[0].1 + 1, w[0].0 + 1),
+                format!("entry ({}, {}) repeated", j + 1, w[0] + 1),
             ));
         }
     }
-    for &(_, j, _) in &entries {
-        col_ptr[j + 1] += 1;
-    }
     for j in 0..n {
-        col_ptr[j + 1] += col_ptr[j];
-        let last = col_ptr[j + 1].checked_sub(1).filter(|&k| k >= col_ptr[j]);
-        if last.is_none_or(|k| entries[k].0 != j) {
+        let rows = &m.row_idx[m.col_ptr[j]..m.col_ptr[j + 1]];
+        if rows.last() != Some(&j) {
             return Err(parse_err(
                 no,
                 format!("no diagonal entry ({0}, {0})", j + 1),
             ));
         }
     }
-    Ok(UpperCsc {
-        n,
-        col_ptr,
-        row_idx: entries.iter().map(|e| e.0).collect(),
-        values: entries.iter().map(|e| e.2).collect(),
-    })
+    Ok(m)
 }
 
 #[cfg(test)]

@@ -239,27 +239,14 @@ fn tutte_matrix(mesh: &TriMesh) -> Exported {
             if index[a] != usize::MAX {
                 diagonal[index[a]] += w;
                 if index[b] != usize::MAX && index[a] < index[b] {
-                    entries.push((index[b], index[a], -w));
+                    entries.push((index[a], index[b], -w));
                 }
             }
         }
     }
     entries.extend(diagonal.iter().enumerate().map(|(c, &d)| (c, c, d)));
-    entries.sort_unstable_by_key(|&(col, row, _)| (col, row));
-    let mut col_ptr = vec![0; m + 1];
-    for &(col, _, _) in &entries {
-        col_ptr[col + 1] += 1;
-    }
-    for c in 0..m {
-        col_ptr[c + 1] += col_ptr[c];
-    }
     Exported {
-        matrix: UpperCsc {
-            n: m,
-            col_ptr,
-            row_idx: entries.iter().map(|e| e.1).collect(),
-            values: entries.iter().map(|e| e.2).collect(),
-        },
+        matrix: UpperCsc::from_entries(m, entries),
         elements: mesh.triangles.len(),
         shift: 0.0,
         relative_shift: 0.0,
